@@ -1,0 +1,27 @@
+#pragma once
+// Each subcommand: an options struct, a function that adds it to the CLI
+// and a function that runs it. Run functions return the exit code or throw;
+// main() maps exceptions to exit codes.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace sdg::cli {
+
+// Exit codes shell scripts and schedulers can rely on.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitRunFailure = 1;
+inline constexpr int kExitInvalid = 2;
+
+struct SceneArgs {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::vector<std::string> plugins;
+};
+
+void addValidate(CLI::App& app, int& exitCode);
+void addInspect(CLI::App& app, int& exitCode);
+void addSchema(CLI::App& app, int& exitCode);
+
+}  // namespace sdg::cli

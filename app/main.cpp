@@ -1,0 +1,83 @@
+// sdgbehave: synthetic data for computer vision from YAML scene files.
+// This file only wires the command line to the library and maps errors to
+// exit codes: 0 ok, 2 bad usage or an invalid scene, 1 a failure during a run.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "core/diagnostics.h"
+#include "core/log.h"
+
+namespace {
+
+constexpr const char* kDescription =
+    "sdgbehave generates synthetic training data for computer vision from a YAML scene:\n"
+    "prims with behaviors (randomizers), a physics pre-roll, off-screen rendering and\n"
+    "Replicator BasicWriter-compatible output.\n\n"
+    "Examples:\n"
+    "  sdgbehave validate scenes/warehouse.yaml\n"
+    "  sdgbehave inspect scenes/warehouse.yaml --set render.resolution=[640,480]\n"
+    "  sdgbehave schema --out schemas/scene.schema.json\n";
+
+std::string versionText() {
+  std::string v = "sdgbehave " SDG_VERSION;
+  if (std::string(SDG_GIT_DESCRIBE).size()) v += " (" SDG_GIT_DESCRIBE ")";
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace sdg;
+  CLI::App app(kDescription, "sdgbehave");
+  app.require_subcommand(1);
+  app.set_version_flag("--version", versionText());
+  app.footer(
+      "Exit status: 0 success; 2 bad usage or an invalid scene; 1 a failure during a run.\n"
+      "Run `sdgbehave COMMAND --help` for a command's options.");
+  bool quiet = false, verbose = false;
+  std::string logFormat = "text";
+  app.add_flag("-q,--quiet", quiet, "Only errors on stderr");
+  app.add_flag("-v,--verbose", verbose, "Debug messages on stderr");
+  app.add_option("--log-format", logFormat, "Log lines as text or JSON (one object per line)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
+
+  int exitCode = cli::kExitOk;
+  cli::addValidate(app, exitCode);
+  cli::addInspect(app, exitCode);
+  cli::addSchema(app, exitCode);
+
+  // Logging must be configured before subcommand callbacks run.
+  app.parse_complete_callback([&] {
+    log::configure(quiet ? log::Level::Error : verbose ? log::Level::Debug : log::Level::Info,
+                   logFormat == "json" ? log::Format::Json : log::Format::Text);
+  });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return cli::kExitInvalid;
+  } catch (const SceneError& e) {
+    for (const Diagnostic& d : e.problems()) log::diagnostic(d);
+    log::write(log::Level::Error, std::to_string(e.problems().size()) +
+                                      (e.problems().size() == 1 ? " problem" : " problems") + "; nothing was run");
+    return cli::kExitInvalid;
+  } catch (const RunError& e) {
+    log::error(e.what());
+    return cli::kExitRunFailure;
+  } catch (const std::exception& e) {
+    log::error(std::string("internal error: ") + e.what());
+    return cli::kExitRunFailure;
+  }
+  return exitCode;
+}

@@ -1,0 +1,78 @@
+#include "scene_io/inspect.h"
+
+#include <sstream>
+
+#include "core/text.h"
+#include "stage/behavior_spec.h"
+#include "stage/path.h"
+
+namespace sdg {
+namespace {
+
+std::string options(const OptionSet& set) {
+  std::string out;
+  for (const auto& [name, value] : set.values()) {
+    if (!out.empty()) out += ", ";
+    out += name + " " + value.toString();
+  }
+  return out;
+}
+
+void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) {
+  std::string indent(2 * (path::depth(prim.path()) - 1), ' ');
+  std::string detail = indent + "    ";
+  out << indent << prim.path() << "  " << prim.typeInfo().name << "\n";
+  for (const XformOp& op : prim.xformOps()) out << detail << op.attributeName() << " " << op.value.toString() << "\n";
+  if (!prim.xformOps().empty() || prim.typeInfo().xformable) {
+    Vec3d t = stage.worldMatrix(prim).block<3, 1>(0, 3);
+    if (!prim.xformOps().empty())
+      out << detail << "world position " << Value::makeDouble3(t).toString() << "\n";
+  }
+  for (const auto& [taxonomy, labels] : prim.semantics())
+    out << detail << "semantics " << taxonomy << ": " << text::join(labels, ", ") << "\n";
+  if (prim.material()) out << detail << "material " << prim.material()->path << " (" << prim.material()->strength << ")\n";
+  for (const auto& [name, attribute] : prim.attributes()) {
+    if (name.rfind("exposedVar:", 0) == 0) continue;  // listed under their behavior
+    out << detail << name << " " << attribute.value.toString() << (attribute.custom ? "  (custom)" : "") << "\n";
+  }
+  for (const std::string& behavior : prim.behaviors()) {
+    out << detail << "behavior " << behavior << "\n";
+    std::string prefix = exposedAttributeName(behavior, "");
+    for (const auto& [name, attribute] : prim.attributes())
+      if (name.rfind(prefix, 0) == 0)
+        out << detail << "  " << name.substr(prefix.size()) << " " << attribute.value.toString() << "\n";
+  }
+  for (const auto& [key, value] : prim.metadata()) out << detail << "metadata " << key << ": " << value << "\n";
+}
+
+}  // namespace
+
+std::string inspectScene(const Scene& scene) {
+  std::ostringstream out;
+  const StageMetadata& meta = scene.stage.metadata();
+  out << "scene " << scene.sourcePath << "\n";
+  out << "stage: timeCodesPerSecond " << text::formatDouble(meta.timeCodesPerSecond) << ", metersPerUnit "
+      << text::formatDouble(meta.metersPerUnit) << ", upAxis " << meta.upAxis << "\n";
+  if (!scene.assetRoots.empty()) out << "asset_roots: " << text::join(scene.assetRoots, ", ") << "\n";
+  if (!scene.plugins.empty()) out << "plugins: " << text::join(scene.plugins, ", ") << "\n";
+  out << "render: " << options(scene.render) << "\n";
+  out << "capture: " << options(scene.capture) << "\n";
+  for (const WriterConfig& w : scene.writers) {
+    // Only what differs from the defaults: the enabled annotators, mostly.
+    std::string changed;
+    for (const AttributeSpec& spec : findWriterType(w.type)->options) {
+      const Value& v = w.options.get(spec.name);
+      if (v == spec.defaultValue) continue;
+      changed += (changed.empty() ? "" : ", ") + spec.name + " " + v.toString();
+    }
+    out << "writer " << w.type << ": " << (changed.empty() ? "defaults" : changed) << "\n";
+  }
+  for (const EventStep& e : scene.events)
+    out << "event: publish " << e.publish << " " << e.payload.toString() << ", wait on " << e.waitEvent << " for "
+        << e.waitFor.toString() << " (at most " << e.maxUpdates << " updates)\n";
+  out << "prims (" << scene.stage.primCount() << "):\n";
+  scene.stage.traverse([&](const Prim& prim) { inspectPrim(scene.stage, prim, out); });
+  return out.str();
+}
+
+}  // namespace sdg

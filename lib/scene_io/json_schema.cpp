@@ -1,0 +1,270 @@
+#include "scene_io/json_schema.h"
+
+#include <cstdlib>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "core/text.h"
+#include "scene_io/prim_reader.h"
+#include "scene_io/scene.h"
+#include "stage/xform.h"
+
+namespace sdg {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kIdentifierPattern = "[A-Za-z_][A-Za-z0-9_]*";
+
+Json numbers(size_t count, const char* itemType = "number") {
+  return Json{{"type", "array"}, {"items", {{"type", itemType}}}, {"minItems", count}, {"maxItems", count}};
+}
+
+// Floats go through their shortest text so 20.955f stays 20.955 in JSON.
+double floatJson(float f) { return std::strtod(text::formatFloat(f).c_str(), nullptr); }
+
+Json valueJson(const Value& v) {
+  switch (v.type()) {
+    case ValueType::Bool: return v.get<bool>();
+    case ValueType::Int: return v.get<int32_t>();
+    case ValueType::UInt: return v.get<uint32_t>();
+    case ValueType::Float: return floatJson(v.get<float>());
+    case ValueType::Double: return v.get<double>();
+    case ValueType::Int2: return Json::array({v.get<Vec2i>().x(), v.get<Vec2i>().y()});
+    case ValueType::Float2: return Json::array({floatJson(v.get<Vec2f>().x()), floatJson(v.get<Vec2f>().y())});
+    case ValueType::Float3:
+    case ValueType::Color3f: {
+      const Vec3f& x = v.get<Vec3f>();
+      return Json::array({floatJson(x.x()), floatJson(x.y()), floatJson(x.z())});
+    }
+    case ValueType::Double3:
+    case ValueType::Vector3d: {
+      const Vec3d& x = v.get<Vec3d>();
+      return Json::array({x.x(), x.y(), x.z()});
+    }
+    case ValueType::Quatf: {
+      const Quatf& q = v.get<Quatf>();
+      return Json::array({floatJson(q.w()), floatJson(q.x()), floatJson(q.y()), floatJson(q.z())});
+    }
+    case ValueType::Quatd: {
+      const Quatd& q = v.get<Quatd>();
+      return Json::array({q.w(), q.x(), q.y(), q.z()});
+    }
+    case ValueType::Matrix4d: {
+      Json rows = Json::array();
+      const Matrix4d& m = v.get<Matrix4d>();
+      for (int c = 0; c < 4; ++c) rows.push_back(Json::array({m(0, c), m(1, c), m(2, c), m(3, c)}));
+      return rows;
+    }
+    case ValueType::String:
+    case ValueType::Token:
+    case ValueType::Asset: return v.get<std::string>();
+    case ValueType::AssetArray:
+    case ValueType::StringArray: return v.get<std::vector<std::string>>();
+  }
+  return nullptr;
+}
+
+Json typeSchema(ValueType type) {
+  switch (type) {
+    case ValueType::Bool: return {{"type", "boolean"}};
+    case ValueType::Int:
+      return {{"type", "integer"},
+              {"minimum", std::numeric_limits<int32_t>::min()},
+              {"maximum", std::numeric_limits<int32_t>::max()}};
+    case ValueType::UInt:
+      return {{"type", "integer"}, {"minimum", 0}, {"maximum", std::numeric_limits<uint32_t>::max()}};
+    case ValueType::Float:
+    case ValueType::Double: return {{"type", "number"}};
+    case ValueType::Int2: return numbers(2, "integer");
+    case ValueType::Float2: return numbers(2);
+    case ValueType::Float3:
+    case ValueType::Color3f:
+    case ValueType::Double3:
+    case ValueType::Vector3d: return numbers(3);
+    case ValueType::Quatf:
+    case ValueType::Quatd: return numbers(4);
+    case ValueType::Matrix4d:
+      return {{"type", "array"}, {"items", numbers(4)}, {"minItems", 4}, {"maxItems", 4}};
+    case ValueType::String:
+    case ValueType::Token:
+    case ValueType::Asset: return {{"type", "string"}};
+    case ValueType::AssetArray:
+    case ValueType::StringArray: return {{"type", "array"}, {"items", {{"type", "string"}}}};
+  }
+  return {};
+}
+
+Json attributeSchema(const AttributeSpec& spec) {
+  Json s;
+  if (!spec.doc.empty()) s["description"] = spec.doc;
+  Json t = typeSchema(spec.type);
+  for (auto& [k, v] : t.items()) s[k] = v;
+  if (!spec.allowedTokens.empty()) s["enum"] = spec.allowedTokens;
+  if (spec.minimum) {
+    if (s["type"] == "array" && s["items"].is_object()) s["items"]["minimum"] = *spec.minimum;
+    else s["minimum"] = *spec.minimum;
+  }
+  s["default"] = valueJson(spec.defaultValue);
+  return s;
+}
+
+Json optionsObject(std::span<const AttributeSpec> specs, const char* description) {
+  Json props = Json::object();
+  for (const AttributeSpec& spec : specs) props[spec.name] = attributeSchema(spec);
+  return {{"description", description}, {"type", {"object", "null"}}, {"additionalProperties", false}, {"properties", props}};
+}
+
+Json writerSchema() {
+  Json variants = Json::array();
+  for (const WriterTypeInfo& type : writerTypes()) {
+    Json props = Json::object();
+    props["type"] = {{"const", type.name}};
+    for (const AttributeSpec& spec : type.options) props[spec.name] = attributeSchema(spec);
+    variants.push_back({{"description", type.doc},
+                        {"type", "object"},
+                        {"required", {"type"}},
+                        {"additionalProperties", false},
+                        {"properties", props}});
+  }
+  return {{"oneOf", variants}};
+}
+
+Json payloadSchema() {
+  return {{"type", "object"}, {"additionalProperties", {{"type", {"string", "number", "boolean"}}}}};
+}
+
+Json eventsSchema() {
+  Json step = {{"type", "object"},
+               {"required", {"publish"}},
+               {"additionalProperties", false},
+               {"properties",
+                {{"publish", {{"type", "string"}, {"description", "Event to publish."}}},
+                 {"payload", {{"$ref", "#/definitions/payload"}}},
+                 {"wait_event",
+                  {{"type", "string"}, {"description", "Event to wait on; defaults to publish with .in replaced by .out."}}},
+                 {"wait_for", {{"$ref", "#/definitions/payload"}, {"description", "Entries the reply must contain."}}},
+                 {"max_updates", {{"type", "integer"}, {"minimum", 1}, {"description", "Updates to wait at most."}}}}}};
+  return {{"description", "The pre-roll: publish each event, then wait for its reply."},
+          {"type", "array"},
+          {"items", step}};
+}
+
+Json behaviorsSchema(const BehaviorCatalog& catalog) {
+  Json props = Json::object();
+  for (const BehaviorSpec& spec : catalog.specs) {
+    Json vars = Json::object();
+    for (const AttributeSpec& var : spec.variables)
+      if (!var.locked) vars[var.name] = attributeSchema(var);
+    props[spec.name] = {{"description", spec.summary},
+                        {"type", {"object", "null"}},
+                        {"additionalProperties", false},
+                        {"properties", vars}};
+  }
+  return {{"description", "Behaviors attached to the prim, in order, with their exposed variables."},
+          {"type", "object"},
+          {"additionalProperties", false},
+          {"properties", props}};
+}
+
+Json primSchema(const PrimTypeInfo& info) {
+  Json props = Json::object();
+  props["type"] = {{"const", info.name}};
+  for (const AttributeSpec& spec : info.attributes) props[spec.name] = attributeSchema(spec);
+  props["semantics"] = {{"$ref", "#/definitions/semantics"}};
+  props["material"] = {{"$ref", "#/definitions/material"}};
+  props["behaviors"] = {{"$ref", "#/definitions/behaviors"}};
+  props["attributes"] = {{"$ref", "#/definitions/attributes"}};
+  props["metadata"] = {{"type", "object"}, {"additionalProperties", {{"type", "string"}}}};
+  Json s = {{"description", info.doc}, {"type", "object"}, {"additionalProperties", false}, {"properties", props}};
+  if (info.xformable) {
+    Json patterns = Json::object();
+    for (XformOpKind kind : allXformOpKinds()) {
+      std::string pattern = "^" + std::string(xformOpKindName(kind)) + "(:" + kIdentifierPattern + ")*$";
+      Json op = typeSchema(xformOpValueType(kind));
+      op["description"] = "xformOp:" + std::string(xformOpKindName(kind)) + "; ops apply in the order written";
+      patterns[pattern] = op;
+    }
+    s["patternProperties"] = patterns;
+  }
+  // Xform is the default type: its entries may omit `type`.
+  if (info.type != PrimType::Xform) s["required"] = {"type"};
+  return s;
+}
+
+}  // namespace
+
+std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
+  Json defs = Json::object();
+  Json primVariants = Json::array({{{"type", "null"}}});
+  for (const PrimTypeInfo& info : allPrimTypes()) {
+    std::string name = "prim" + std::string(info.name);
+    defs[name] = primSchema(info);
+    primVariants.push_back({{"$ref", "#/definitions/" + name}});
+  }
+  defs["prim"] = {{"oneOf", primVariants}};
+  defs["writer"] = writerSchema();
+  defs["payload"] = payloadSchema();
+  defs["behaviors"] = behaviorsSchema(catalog);
+  Json label = {{"type", "string"}, {"minLength", 1}};
+  Json labels = {{"type", "array"}, {"items", label}};
+  Json oneOrMany = Json::object();
+  oneOrMany["oneOf"] = Json::array({label, labels});
+  defs["semantics"] = {{"description", "Labels per taxonomy, e.g. {class: power_drill}."},
+                       {"type", "object"},
+                       {"propertyNames", {{"pattern", std::string("^") + kIdentifierPattern + "$"}}},
+                       {"additionalProperties", oneOrMany}};
+  defs["material"] = {
+      {"description", "Material binding: a Material prim path, or {path, strength}."},
+      {"oneOf",
+       {{{"type", "string"}},
+        {{"type", "object"},
+         {"required", {"path"}},
+         {"additionalProperties", false},
+         {"properties",
+          {{"path", {{"type", "string"}}},
+           {"strength", {{"enum", {"weakerThanDescendants", "strongerThanDescendants"}}}}}}}}}};
+  Json typeNames = Json::array();
+  for (ValueType t : allValueTypes()) typeNames.push_back(valueTypeName(t));
+  defs["attributes"] = {
+      {"description", "Custom typed attributes: name -> {type, value, doc}."},
+      {"type", "object"},
+      {"additionalProperties",
+       {{"type", "object"},
+        {"required", {"type", "value"}},
+        {"additionalProperties", false},
+        {"properties", {{"type", {{"enum", typeNames}}}, {"value", Json::object()}, {"doc", {{"type", "string"}}}}}}}};
+
+  Json props = Json::object();
+  props["version"] = {{"const", kSceneFormatVersion}, {"description", "Scene format version."}};
+  props["stage"] = optionsObject(stageOptionSpecs(), "Stage-wide metadata (USD names).");
+  props["asset_roots"] = {{"description", "Folders searched for assets, relative to the scene file."},
+                          {"type", "array"},
+                          {"items", {{"type", "string"}}}};
+  props["plugins"] = {{"description", "Behavior plugin libraries (.so) to load before the prims are read."},
+                      {"type", "array"},
+                      {"items", {{"type", "string"}}}};
+  props["render"] = optionsObject(renderOptionSpecs(), "Rendering settings.");
+  props["capture"] = optionsObject(captureOptionSpecs(), "What to capture.");
+  props["writer"] = {{"description", "One writer, or a list of writers of different types."},
+                     {"oneOf", {{{"$ref", "#/definitions/writer"}},
+                                {{"type", "array"}, {"items", {{"$ref", "#/definitions/writer"}}}}}}};
+  props["events"] = eventsSchema();
+  props["prims"] = {{"description", "Prims by absolute path; a prim's parent must be listed too."},
+                    {"type", {"object", "null"}},
+                    {"propertyNames", {{"pattern", std::string("^(/") + kIdentifierPattern + ")+$"}}},
+                    {"additionalProperties", {{"$ref", "#/definitions/prim"}}}};
+
+  Json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
+                 {"$comment", "Generated by `sdgbehave schema`; do not edit by hand."},
+                 {"title", "sdgbehave scene"},
+                 {"type", "object"},
+                 {"required", {"version", "prims"}},
+                 {"additionalProperties", false},
+                 {"properties", props},
+                 {"definitions", defs}};
+  return schema.dump(2) + "\n";
+}
+
+}  // namespace sdg

@@ -1,0 +1,304 @@
+#include "scene_io/prim_reader.h"
+
+#include <algorithm>
+#include <unordered_map>
+
+#include "core/text.h"
+#include "scene_io/map_reader.h"
+#include "scene_io/value_reader.h"
+#include "stage/path.h"
+
+namespace sdg {
+namespace {
+
+struct PrimDecl {
+  std::string path;
+  PrimType type = PrimType::Xform;
+  const RawNode* entry = nullptr;
+  SourceLoc loc;
+};
+
+std::vector<std::string> primTypeNames() {
+  std::vector<std::string> names;
+  for (const PrimTypeInfo& info : allPrimTypes()) names.emplace_back(info.name);
+  return names;
+}
+
+void readSemantics(const RawNode& node, const std::string& what, Prim& prim, Diagnostics& diag) {
+  MapReader map(node, what, diag);
+  if (!map.ok()) return;
+  for (const auto& [key, value] : node.entries) {
+    map.allow(key.scalar);
+    std::string keyWhat = joinWhat(what, key.scalar);
+    if (!path::isIdentifier(key.scalar)) {
+      diag.error(key.loc, keyWhat + ": a taxonomy name must be an identifier (e.g. class)");
+      continue;
+    }
+    std::vector<std::string> labels;
+    if (value.isScalar()) {
+      labels.push_back(value.scalar);
+    } else if (auto v = readValue(value, ValueType::StringArray, keyWhat, diag)) {
+      labels = v->get<std::vector<std::string>>();
+    } else {
+      continue;
+    }
+    bool ok = true;
+    for (const std::string& label : labels)
+      if (label.empty()) {
+        diag.error(value.loc, keyWhat + ": labels must not be empty");
+        ok = false;
+      }
+    if (ok) prim.semantics()[key.scalar] = std::move(labels);
+  }
+}
+
+void readMaterialBinding(const RawNode& node, const std::string& what, Prim& prim, Diagnostics& diag) {
+  MaterialBinding binding;
+  if (node.isScalar()) {
+    binding.path = node.scalar;
+  } else {
+    MapReader map(node, what, diag);
+    if (!map.ok()) return;
+    if (const RawNode* p = map.require("path"))
+      if (auto s = readString(*p, joinWhat(what, "path"), diag)) binding.path = *s;
+    if (const RawNode* s = map.get("strength")) {
+      AttributeSpec spec;
+      spec.type = ValueType::Token;
+      spec.allowedTokens = {"weakerThanDescendants", "strongerThanDescendants"};
+      if (auto v = readValue(*s, spec, joinWhat(what, "strength"), diag)) binding.strength = v->get<std::string>();
+    }
+    map.finish();
+  }
+  if (std::string why = path::whyInvalid(binding.path); !why.empty()) {
+    diag.error(node.loc, what + ": " + text::quote(binding.path) + " is not a prim path: " + why);
+    return;
+  }
+  prim.material() = binding;
+}
+
+void readCustomAttributes(const RawNode& node, const std::string& what, Prim& prim, Diagnostics& diag) {
+  MapReader map(node, what, diag);
+  if (!map.ok()) return;
+  for (const auto& [key, value] : node.entries) {
+    map.allow(key.scalar);
+    std::string attrWhat = prim.path() + "." + key.scalar;
+    if (!isValidAttributeName(key.scalar)) {
+      diag.error(key.loc, attrWhat + ": an attribute name is identifiers joined by ':' (e.g. user:weight)");
+      continue;
+    }
+    if (findSchemaAttribute(prim.type(), key.scalar) || parseXformOpName(key.scalar)) {
+      diag.error(key.loc, attrWhat + ": " + text::quote(key.scalar) +
+                              " is a built-in attribute of the prim; set it directly on the prim, not under attributes");
+      continue;
+    }
+    MapReader entry(value, attrWhat, diag);
+    if (!entry.ok()) continue;
+    const RawNode* typeNode = entry.require("type");
+    const RawNode* valueNode = entry.require("value");
+    const RawNode* docNode = entry.get("doc");
+    entry.finish();
+    if (!typeNode || !valueNode) continue;
+    auto typeName = readString(*typeNode, attrWhat + ".type", diag);
+    if (!typeName) continue;
+    auto type = valueTypeFromName(*typeName);
+    if (!type) {
+      std::vector<std::string> names;
+      for (ValueType t : allValueTypes()) names.emplace_back(valueTypeName(t));
+      diag.error(typeNode->loc, attrWhat + ".type: unknown value type " + text::quote(*typeName) + "; known: " +
+                                    text::join(names, ", ") + text::didYouMean(*typeName, names));
+      continue;
+    }
+    auto v = readValue(*valueNode, *type, attrWhat, diag);
+    if (!v) continue;
+    Attribute& a = prim.setAttribute(key.scalar, *v, true);
+    a.loc = valueNode->loc;
+    if (docNode)
+      if (auto doc = readString(*docNode, attrWhat + ".doc", diag)) a.doc = *doc;
+  }
+}
+
+void readBehaviors(const RawNode& node, const std::string& what, const BehaviorCatalog& catalog, Prim& prim,
+                   Diagnostics& diag) {
+  MapReader map(node, what, diag);
+  if (!map.ok()) return;
+  for (const auto& [key, params] : node.entries) {
+    map.allow(key.scalar);
+    const BehaviorSpec* spec = catalog.find(key.scalar);
+    if (!spec) {
+      std::vector<std::string> names = catalog.names();
+      diag.error(key.loc, prim.path() + ": unknown behavior " + text::quote(key.scalar) + "; known behaviors: " +
+                              (names.empty() ? std::string("(none registered)") : text::join(names, ", ")) +
+                              text::didYouMean(key.scalar, names));
+      continue;
+    }
+    std::string behaviorWhat = prim.path() + " " + spec->name;
+    MapReader vars(params, behaviorWhat, diag);
+    if (!vars.ok()) continue;
+    for (const AttributeSpec& var : spec->variables) {
+      const RawNode* valueNode = vars.get(var.name);
+      if (!valueNode) continue;
+      std::string attrName = exposedAttributeName(spec->name, var.name);
+      if (var.locked) {
+        diag.error(valueNode->loc, prim.path() + "." + attrName + ": is locked (informational only); remove it");
+        continue;
+      }
+      auto v = readValue(*valueNode, var, prim.path() + "." + attrName, diag);
+      if (!v) continue;
+      Attribute& a = prim.setAttribute(attrName, *v, true);
+      a.doc = var.doc;
+      a.loc = valueNode->loc;
+    }
+    vars.finish();
+    createExposedVariables(prim, *spec);
+    prim.behaviors().push_back(spec->name);
+  }
+}
+
+void readMetadata(const RawNode& node, const std::string& what, Prim& prim, Diagnostics& diag) {
+  MapReader map(node, what, diag);
+  if (!map.ok()) return;
+  for (const auto& [key, value] : node.entries) {
+    map.allow(key.scalar);
+    if (auto s = readString(value, joinWhat(what, key.scalar), diag)) prim.metadata()[key.scalar] = *s;
+  }
+}
+
+// Everything of one prim entry but its type.
+void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, Diagnostics& diag) {
+  prim.loc() = decl.loc;
+  const RawNode& entry = *decl.entry;
+  MapReader map(entry, prim.path(), diag);
+  if (!map.ok() || entry.isNull()) return;
+  const PrimTypeInfo& info = prim.typeInfo();
+  map.allow("type");
+
+  for (const auto& [key, value] : entry.entries) {
+    const std::string& name = key.scalar;
+    std::string what = prim.path() + "." + name;
+    if (std::find(std::begin(kPrimStructuralKeys), std::end(kPrimStructuralKeys), name) !=
+        std::end(kPrimStructuralKeys)) {
+      map.allow(name);
+      if (name == "semantics") readSemantics(value, what, prim, diag);
+      else if (name == "material") readMaterialBinding(value, what, prim, diag);
+      else if (name == "behaviors") readBehaviors(value, what, catalog, prim, diag);
+      else if (name == "attributes") readCustomAttributes(value, what, prim, diag);
+      else if (name == "metadata") readMetadata(value, what, prim, diag);
+      continue;
+    }
+    if (const AttributeSpec* spec = findSchemaAttribute(prim.type(), name)) {
+      map.allow(name);
+      if (auto v = readValue(value, *spec, what, diag)) prim.setAttribute(name, *v).loc = value.loc;
+      continue;
+    }
+    if (auto op = parseXformOpName("xformOp:" + name)) {
+      map.allow(name);
+      if (!info.xformable) {
+        diag.error(key.loc, what + ": " + std::string(info.name) + " prims have no transform");
+        continue;
+      }
+      if (!op->suffix.empty() && !isValidAttributeName(op->suffix)) {
+        diag.error(key.loc, what + ": the op suffix must be an identifier");
+        continue;
+      }
+      if (auto v = readValue(value, xformOpValueType(op->kind), what, diag)) {
+        op->value = *v;
+        if (op->kind == XformOpKind::Orient && v->get<Quatd>().norm() < 1e-12) {
+          diag.error(value.loc, what + ": the quaternion must not be zero");
+          continue;
+        }
+        prim.xformOps().push_back(std::move(*op));
+      }
+      continue;
+    }
+  }
+  // Unknown keys: suggest among everything this prim type accepts.
+  for (const AttributeSpec& spec : info.attributes) map.allow(spec.name);
+  if (info.xformable)
+    for (XformOpKind kind : allXformOpKinds()) map.allow(xformOpKindName(kind));
+  map.finish();
+}
+
+}  // namespace
+
+bool isValidAttributeName(std::string_view name) {
+  if (name.empty() || name.size() > 1024) return false;
+  size_t start = 0;
+  while (true) {
+    size_t colon = name.find(':', start);
+    if (!path::isIdentifier(name.substr(start, colon == std::string_view::npos ? colon : colon - start)))
+      return false;
+    if (colon == std::string_view::npos) return true;
+    start = colon + 1;
+  }
+}
+
+void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stage, Diagnostics& diag) {
+  if (prims.isNull()) return;  // a scene with no prims yet
+  if (!prims.isMap()) {
+    diag.error(prims.loc, "prims: expected a mapping from prim path to prim, found " + prims.describe());
+    return;
+  }
+  // Pass 1: paths and types.
+  std::vector<PrimDecl> decls;
+  std::unordered_map<std::string_view, const PrimDecl*> byPath;
+  decls.reserve(prims.entries.size());
+  for (const auto& [key, entry] : prims.entries) {
+    if (!key.isScalar()) {
+      diag.error(key.loc, "prims: a prim path must be a string, found " + key.describe());
+      continue;
+    }
+    if (std::string why = path::whyInvalid(key.scalar); !why.empty()) {
+      diag.error(key.loc, "prims: " + text::quote(key.scalar) + " is not a valid prim path: " + why);
+      continue;
+    }
+    PrimDecl decl{key.scalar, PrimType::Xform, &entry, key.loc};
+    if (!entry.isMap() && !entry.isNull()) {
+      diag.error(entry.loc, key.scalar + ": expected a mapping (the prim's type and attributes), found " +
+                                entry.describe());
+      continue;
+    }
+    if (const RawNode* typeNode = entry.isMap() ? entry.find("type") : nullptr) {
+      auto typeName = readString(*typeNode, key.scalar + ".type", diag);
+      if (!typeName) continue;
+      auto type = primTypeFromName(*typeName);
+      if (!type) {
+        std::vector<std::string> names = primTypeNames();
+        diag.error(typeNode->loc, key.scalar + ".type: unknown prim type " + text::quote(*typeName) +
+                                      "; known types: " + text::join(names, ", ") +
+                                      text::didYouMean(*typeName, names));
+        continue;
+      }
+      decl.type = *type;
+    }
+    decls.push_back(std::move(decl));
+  }
+  for (const PrimDecl& decl : decls) {
+    auto [it, inserted] = byPath.emplace(decl.path, &decl);
+    if (!inserted)
+      diag.error(decl.loc, "prims: duplicate prim path " + decl.path + " (first defined at line " +
+                               std::to_string(it->second->loc.line) + ")");
+  }
+  // Pass 2: every parent must be listed; parents are never created implicitly.
+  std::vector<const PrimDecl*> ordered;
+  for (const PrimDecl& decl : decls) {
+    if (byPath.at(decl.path) != &decl) continue;  // the duplicate, reported
+    std::string_view parent = path::parent(decl.path);
+    if (parent != "/" && !byPath.count(parent)) {
+      diag.error(decl.loc, decl.path + ": its parent " + std::string(parent) +
+                               " is not defined; add it to prims (e.g. `" + std::string(parent) +
+                               ": {type: Xform}`): sdgbehave does not create parents implicitly");
+      continue;
+    }
+    ordered.push_back(&decl);
+  }
+  if (diag.hasErrors()) return;
+  // Pass 3: define parents before children; siblings keep document order.
+  std::stable_sort(ordered.begin(), ordered.end(), [](const PrimDecl* a, const PrimDecl* b) {
+    return path::depth(a->path) < path::depth(b->path);
+  });
+  for (const PrimDecl* decl : ordered) stage.definePrim(decl->path, decl->type);
+  // Pass 4: fill in document order.
+  for (const PrimDecl& decl : decls) fillPrim(decl, catalog, *stage.find(decl.path), diag);
+}
+
+}  // namespace sdg

@@ -1,0 +1,44 @@
+#pragma once
+// A YAML document as plain nodes that carry their source location. yaml-cpp
+// is used only to build these; no yaml-cpp type leaves scene_io.
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/source_loc.h"
+
+namespace sdg {
+
+struct RawNode {
+  enum class Kind { Null, Scalar, Sequence, Map };
+
+  Kind kind = Kind::Null;
+  std::string scalar;   // Scalar text
+  bool quoted = false;  // Scalar written in quotes (so never a number or bool)
+  SourceLoc loc;
+  std::vector<RawNode> items;                          // Sequence
+  std::vector<std::pair<RawNode, RawNode>> entries;    // Map, document order
+
+  bool isNull() const { return kind == Kind::Null; }
+  bool isScalar() const { return kind == Kind::Scalar; }
+  bool isSequence() const { return kind == Kind::Sequence; }
+  bool isMap() const { return kind == Kind::Map; }
+  // The value under `key` in a map, or nullptr.
+  const RawNode* find(std::string_view key) const;
+  // For messages: "a mapping", "a list of 2 items", "the string 'abc'", ...
+  std::string describe() const;
+};
+
+// Documented limits that keep hostile documents bounded in memory and time.
+inline constexpr size_t kMaxSceneFileBytes = 64u << 20;   // 64 MiB
+inline constexpr size_t kMaxDocumentNodes = 2'000'000;    // after alias expansion
+
+// Parses YAML text. `file` names the source in locations; `lineOffset` and
+// `columnOffset` shift them (for snippets such as --set values). Syntax
+// errors, alias bombs and too-deep nesting throw SceneError with a location.
+RawNode parseYaml(std::string_view text, const std::string& file, int lineOffset = 0, int columnOffset = 0);
+// Reads and parses a file; a missing, unreadable or oversized file throws SceneError.
+RawNode parseYamlFile(const std::string& path);
+
+}  // namespace sdg

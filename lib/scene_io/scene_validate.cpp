@@ -1,0 +1,77 @@
+#include "scene_io/scene_validate.h"
+
+#include "core/text.h"
+
+namespace sdg {
+namespace {
+
+SourceLoc attributeLoc(const Prim& prim, std::string_view name) {
+  const Attribute* a = prim.findAttribute(name);
+  return a && a->loc.known() ? a->loc : prim.loc();
+}
+
+void validateCamera(const Prim& prim, Diagnostics& diag) {
+  for (const char* aperture : {"horizontalAperture", "verticalAperture", "focalLength"})
+    if (prim.getFloat(aperture) <= 0.0f)
+      diag.error(attributeLoc(prim, aperture),
+                 prim.path() + "." + aperture + ": must be greater than 0, found " + text::formatFloat(prim.getFloat(aperture)));
+  const Vec2f range = prim.value("clippingRange")->get<Vec2f>();
+  if (!(range.x() > 0.0f && range.x() < range.y()))
+    diag.error(attributeLoc(prim, "clippingRange"),
+               prim.path() + ".clippingRange: expected 0 < near < far, found near " + text::formatFloat(range.x()) +
+                   " and far " + text::formatFloat(range.y()));
+}
+
+void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& catalog, Diagnostics& diag) {
+  if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
+  if (prim.type() == PrimType::Mesh && prim.getString("asset").empty())
+    diag.error(prim.loc(), prim.path() + ": a Mesh needs `asset:` (the path of its mesh file)");
+  if (const auto& binding = prim.material()) {
+    const Prim* target = stage.find(binding->path);
+    if (!target)
+      diag.error(prim.loc(), prim.path() + ".material: " + binding->path + " does not exist");
+    else if (target->type() != PrimType::Material)
+      diag.error(prim.loc(), prim.path() + ".material: " + binding->path + " is a " +
+                                 std::string(target->typeInfo().name) + ", not a Material");
+  }
+  // Exposed variables that name prims must name existing ones.
+  for (const std::string& behavior : prim.behaviors()) {
+    const BehaviorSpec* spec = catalog.find(behavior);
+    if (!spec) continue;
+    for (const AttributeSpec& var : spec->variables) {
+      if (!var.primPath) continue;
+      std::string name = exposedAttributeName(spec->name, var.name);
+      const std::string& target = prim.value(name)->get<std::string>();
+      if (!target.empty() && !stage.find(target))
+        diag.error(attributeLoc(prim, name), prim.path() + "." + name + ": prim " + text::quote(target) +
+                                                 " does not exist");
+    }
+    if (spec->validate) spec->validate(prim, diag);
+  }
+}
+
+}  // namespace
+
+void validateScene(const Scene& scene, const BehaviorCatalog& catalog, Diagnostics& diag) {
+  scene.stage.traverse([&](const Prim& prim) { validatePrim(scene.stage, prim, catalog, diag); });
+
+  const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
+  if (resolution.maxCoeff() > kMaxResolution) {
+    const SourceLoc* loc = scene.render.locOf("resolution");
+    diag.error(loc ? *loc : SourceLoc{scene.sourcePath, 0, 0},
+               "render.resolution: each side is limited to " + std::to_string(kMaxResolution) + " pixels, found " +
+                   std::to_string(resolution.x()) + " x " + std::to_string(resolution.y()));
+  }
+  const auto& cameras = scene.capture.get("cameras").get<std::vector<std::string>>();
+  const SourceLoc* camerasLoc = scene.capture.locOf("cameras");
+  for (const std::string& path : cameras) {
+    const Prim* prim = scene.stage.find(path);
+    SourceLoc loc = camerasLoc ? *camerasLoc : SourceLoc{scene.sourcePath, 0, 0};
+    if (!prim)
+      diag.error(loc, "capture.cameras: " + text::quote(path) + " does not exist");
+    else if (prim->type() != PrimType::Camera)
+      diag.error(loc, "capture.cameras: " + path + " is a " + std::string(prim->typeInfo().name) + ", not a Camera");
+  }
+}
+
+}  // namespace sdg

@@ -1,0 +1,145 @@
+// The run-level option tables: names, types, defaults and docs. BasicWriter
+// options keep Replicator's names and defaults so its users recognise them.
+#include <stdexcept>
+
+#include "scene_io/scene.h"
+
+namespace sdg {
+namespace {
+
+AttributeSpec option(std::string name, Value fallback, std::string doc) {
+  AttributeSpec spec;
+  spec.name = std::move(name);
+  spec.type = fallback.type();
+  spec.defaultValue = std::move(fallback);
+  spec.doc = std::move(doc);
+  return spec;
+}
+
+AttributeSpec atLeast(double minimum, AttributeSpec spec) {
+  spec.minimum = minimum;
+  return spec;
+}
+
+AttributeSpec tokens(AttributeSpec spec, std::vector<std::string> allowed) {
+  spec.allowedTokens = std::move(allowed);
+  return spec;
+}
+
+const std::vector<AttributeSpec>& stageSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      atLeast(1, option("timeCodesPerSecond", Value::makeDouble(60.0),
+                        "Timeline rate; one update advances 1/timeCodesPerSecond seconds and physics steps at that rate.")),
+      atLeast(1e-9, option("metersPerUnit", Value::makeDouble(1.0),
+                           "Size of one scene unit in metres (distance outputs are written in metres).")),
+      tokens(option("upAxis", Value::makeToken("Z"), "The world's up axis."), {"Y", "Z"}),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& renderSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      atLeast(1, option("resolution", Value::makeInt2(512, 512), "Image size in pixels (width, height).")),
+      atLeast(1, option("subframes", Value::makeUInt(1),
+                        "Jittered sub-samples accumulated per frame for anti-aliased colour (labels stay exact).")),
+      tokens(option("backend", Value::makeToken("auto"),
+                    "GL back end: osmesa (CPU), egl (GPU, headless) or auto (EGL GPU when present, else OSMesa)."),
+             {"auto", "osmesa", "egl"}),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& captureSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      option("cameras", Value::makeStringArray({}),
+             "Camera prims to render, one render product each; empty means every Camera prim of the stage."),
+      option("frames", Value::makeUInt(1), "Number of frames to capture."),
+      option("seed", Value::makeInt(0), "Run seed; every random stream is derived from it (--seed overrides)."),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& basicWriterSpecs() {
+  auto flag = [](std::string name, bool fallback, std::string doc) {
+    return option(std::move(name), Value::makeBool(fallback), std::move(doc));
+  };
+  static const std::vector<AttributeSpec> specs = {
+      flag("rgb", false, "rgb_X.png: the colour image (8-bit RGBA)."),
+      flag("bounding_box_2d_tight", false, "Boxes around the visible pixels of each labelled entity."),
+      flag("bounding_box_2d_loose", false, "Boxes around the full projected extent, ignoring occluders."),
+      flag("semantic_segmentation", false, "Per-pixel semantic ids and their labels."),
+      flag("instance_id_segmentation", false, "Per-pixel instance ids mapped to prim paths."),
+      flag("instance_segmentation", false, "Per-pixel instance ids mapped to prim paths and labels."),
+      flag("distance_to_camera", false, "float32 metres from the camera centre (.npy)."),
+      flag("distance_to_image_plane", false, "float32 metres along the optical axis (.npy)."),
+      flag("bounding_box_3d", false, "Local extents and local-to-world transforms of labelled entities."),
+      flag("occlusion", false, "Fraction of each entity hidden by others."),
+      flag("normals", false, "World-space normals encoded as an RGBA PNG."),
+      flag("camera_params", false, "Intrinsics, view and projection matrices (camera_params_X.json)."),
+      flag("pointcloud", false, "World positions, colours, normals and ids of labelled pixels (.npy)."),
+      flag("pointcloud_include_unlabelled", false, "Include unlabelled geometry in the point cloud."),
+      tokens(option("image_output_format", Value::makeToken("png"), "File format of the rgb output."), {"png"}),
+      flag("colorize_semantic_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
+      flag("colorize_instance_id_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
+      flag("colorize_instance_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
+      flag("colorize_depth", false, "Also write a greyscale PNG for each distance output."),
+      option("semantic_types", Value::makeStringArray({"class"}), "Label taxonomies to write."),
+      option("frame_padding", Value::makeUInt(4), "Zero-padding width of frame numbers in file names."),
+      flag("use_common_output_dir", false,
+           "With several cameras: <annotator>/<camera>_<kind>_X files instead of <camera>/<annotator>/ folders."),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& cocoWriterSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      option("semantic_types", Value::makeStringArray({"class"}),
+             "Label taxonomies whose labels become COCO categories."),
+      option("file_name", Value::makeString("coco_instances.json"), "Name of the instances file in the output folder."),
+  };
+  return specs;
+}
+
+}  // namespace
+
+OptionSet::OptionSet(std::span<const AttributeSpec> specs) {
+  for (const AttributeSpec& s : specs) values_.emplace(s.name, s.defaultValue);
+}
+
+const Value& OptionSet::get(std::string_view name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("no option " + std::string(name));
+  return it->second;
+}
+
+void OptionSet::set(const std::string& name, Value value, const SourceLoc& loc) {
+  values_[name] = std::move(value);
+  locs_[name] = loc;
+}
+
+const SourceLoc* OptionSet::locOf(std::string_view name) const {
+  auto it = locs_.find(name);
+  return it == locs_.end() ? nullptr : &it->second;
+}
+
+Scene::Scene() : render(renderOptionSpecs()), capture(captureOptionSpecs()) {}
+
+std::span<const AttributeSpec> stageOptionSpecs() { return stageSpecs(); }
+std::span<const AttributeSpec> renderOptionSpecs() { return renderSpecs(); }
+std::span<const AttributeSpec> captureOptionSpecs() { return captureSpecs(); }
+
+std::span<const WriterTypeInfo> writerTypes() {
+  static const std::vector<WriterTypeInfo> types = {
+      {"BasicWriter", "Replicator BasicWriter folder layout and file formats.", basicWriterSpecs()},
+      {"CocoWriter", "One COCO instances JSON for the run (tight boxes, RLE masks).", cocoWriterSpecs()},
+  };
+  return types;
+}
+
+const WriterTypeInfo* findWriterType(std::string_view name) {
+  for (const WriterTypeInfo& t : writerTypes())
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+}  // namespace sdg

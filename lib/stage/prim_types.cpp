@@ -1,0 +1,177 @@
+#include "stage/prim_types.h"
+
+#include <string>
+
+namespace sdg {
+namespace {
+
+AttributeSpec attr(std::string name, Value fallback, std::string doc) {
+  AttributeSpec spec;
+  spec.name = std::move(name);
+  spec.type = fallback.type();
+  spec.defaultValue = std::move(fallback);
+  spec.doc = std::move(doc);
+  return spec;
+}
+
+AttributeSpec tokenAttr(std::string name, std::string fallback, std::vector<std::string> allowed,
+                        std::string doc) {
+  AttributeSpec spec = attr(std::move(name), Value::makeToken(std::move(fallback)), std::move(doc));
+  spec.allowedTokens = std::move(allowed);
+  return spec;
+}
+
+AttributeSpec positive(AttributeSpec spec) {
+  spec.minimum = 0.0;
+  return spec;
+}
+
+std::vector<AttributeSpec> concat(std::vector<AttributeSpec> a, const std::vector<AttributeSpec>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+const std::vector<AttributeSpec>& imageable() {
+  static const std::vector<AttributeSpec> specs = {
+      tokenAttr("visibility", "inherited", {"inherited", "invisible"},
+                "'invisible' hides the prim and its descendants from every render pass."),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& gprim() {
+  static const std::vector<AttributeSpec> specs = concat(
+      imageable(),
+      {attr("primvars:displayColor", Value::makeColor3f(Vec3f(0.5f, 0.5f, 0.5f)),
+            "Base colour used when no material is bound."),
+       attr("doubleSided", Value::makeBool(false), "Render back faces too.")});
+  return specs;
+}
+
+std::vector<AttributeSpec> axisShape(double radius, double height, std::string_view what) {
+  return concat(gprim(),
+                {positive(attr("radius", Value::makeDouble(radius), "Radius of the " + std::string(what) + ".")),
+                 positive(attr("height", Value::makeDouble(height),
+                               "Length along the axis" + std::string(what == "capsule" ? ", without the caps." : "."))),
+                 tokenAttr("axis", "Z", {"X", "Y", "Z"}, "Axis the shape is aligned with.")});
+}
+
+const std::vector<AttributeSpec>& light() {
+  static const std::vector<AttributeSpec> specs = concat(
+      imageable(),
+      {positive(attr("inputs:intensity", Value::makeFloat(1.0f),
+                     "Scales the brightness (USD units; the emitted power is intensity * 2^exposure * color).")),
+       attr("inputs:exposure", Value::makeFloat(0.0f), "Brightness as a power of 2."),
+       attr("inputs:color", Value::makeColor3f(Vec3f(1, 1, 1)), "Colour of the emitted light (linear RGB)."),
+       attr("inputs:normalize", Value::makeBool(false), "Divide the power by the light's area."),
+       attr("inputs:diffuse", Value::makeFloat(1.0f), "Multiplier for the diffuse response."),
+       attr("inputs:specular", Value::makeFloat(1.0f), "Multiplier for the specular response.")});
+  return specs;
+}
+
+std::vector<AttributeSpec> lightWith(std::vector<AttributeSpec> extra) { return concat(light(), extra); }
+
+std::vector<PrimTypeInfo> buildTable() {
+  std::vector<PrimTypeInfo> t;
+  t.push_back({PrimType::Xform, "Xform", true, false, false,
+               "A transformable group (the default type).", imageable()});
+  t.push_back({PrimType::Scope, "Scope", false, false, false,
+               "A grouping prim with no transform.", {}});
+  t.push_back({PrimType::Mesh, "Mesh", true, true, false,
+               "Geometry loaded from an asset file (OBJ, glTF/GLB, FBX, PLY, STL, DAE).",
+               concat(gprim(), {attr("asset", Value::makeAsset(""), "Path of the mesh file."),
+                                attr("submesh", Value::makeString(""),
+                                     "Name of one mesh inside the file; empty means all of them.")})});
+  t.push_back({PrimType::Cube, "Cube", true, true, false, "An axis-aligned cube centred at the origin.",
+               concat(gprim(), {positive(attr("size", Value::makeDouble(2.0), "Edge length."))})});
+  t.push_back({PrimType::Sphere, "Sphere", true, true, false, "A sphere centred at the origin.",
+               concat(gprim(), {positive(attr("radius", Value::makeDouble(1.0), "Radius."))})});
+  t.push_back({PrimType::Cylinder, "Cylinder", true, true, false, "A capped cylinder centred at the origin.",
+               axisShape(1.0, 2.0, "cylinder")});
+  t.push_back({PrimType::Cone, "Cone", true, true, false, "A cone centred at the origin, apex toward +axis.",
+               axisShape(1.0, 2.0, "cone")});
+  t.push_back({PrimType::Capsule, "Capsule", true, true, false, "A cylinder with hemispherical caps.",
+               axisShape(0.5, 1.0, "capsule")});
+  t.push_back({PrimType::Plane, "Plane", true, true, false, "A flat rectangle through the origin.",
+               concat(gprim(), {positive(attr("width", Value::makeDouble(2.0), "Extent along the first in-plane axis.")),
+                                positive(attr("length", Value::makeDouble(2.0), "Extent along the second in-plane axis.")),
+                                tokenAttr("axis", "Z", {"X", "Y", "Z"}, "Normal of the plane."),
+                                attr("doubleSided", Value::makeBool(true), "Render back faces too.")})});
+  t.push_back({PrimType::Camera, "Camera", true, false, false,
+               "A camera looking down its local -Z axis with +Y up.",
+               concat(imageable(),
+                      {positive(attr("focalLength", Value::makeFloat(50.0f), "Focal length (tenths of a scene unit, usually mm).")),
+                       positive(attr("horizontalAperture", Value::makeFloat(20.955f), "Horizontal film aperture (same unit as focalLength).")),
+                       positive(attr("verticalAperture", Value::makeFloat(15.2908f), "Vertical film aperture.")),
+                       attr("horizontalApertureOffset", Value::makeFloat(0.0f), "Horizontal shift of the aperture."),
+                       attr("verticalApertureOffset", Value::makeFloat(0.0f), "Vertical shift of the aperture."),
+                       positive(attr("clippingRange", Value::makeFloat2(1.0f, 1000000.0f), "Near and far clipping distances (scene units).")),
+                       tokenAttr("projection", "perspective", {"perspective", "orthographic"}, "Projection model."),
+                       positive(attr("focusDistance", Value::makeFloat(0.0f), "Distance to the focus plane (metadata only).")),
+                       positive(attr("fStop", Value::makeFloat(0.0f), "Lens aperture; 0 disables depth of field (metadata only)."))})});
+  t.push_back({PrimType::DistantLight, "DistantLight", true, false, true,
+               "Parallel light shining down the prim's local -Z axis.",
+               [] {
+                 auto specs = lightWith({positive(attr("inputs:angle", Value::makeFloat(0.53f), "Angular diameter of the source (degrees)."))});
+                 for (auto& s : specs)
+                   if (s.name == "inputs:intensity") s.defaultValue = Value::makeFloat(50000.0f);
+                 return specs;
+               }()});
+  t.push_back({PrimType::SphereLight, "SphereLight", true, false, true, "A spherical emitter.",
+               lightWith({positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius of the sphere.")),
+                          attr("treatAsPoint", Value::makeBool(false), "Treat as a point light of zero radius.")})});
+  t.push_back({PrimType::RectLight, "RectLight", true, false, true, "A rectangle emitting toward -Z.",
+               lightWith({positive(attr("inputs:width", Value::makeFloat(1.0f), "Width along X.")),
+                          positive(attr("inputs:height", Value::makeFloat(1.0f), "Height along Y.")),
+                          attr("inputs:texture:file", Value::makeAsset(""), "Optional emission texture.")})});
+  t.push_back({PrimType::DiskLight, "DiskLight", true, false, true, "A disk emitting toward -Z.",
+               lightWith({positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius of the disk."))})});
+  t.push_back({PrimType::CylinderLight, "CylinderLight", true, false, true, "A cylinder along X emitting outward.",
+               lightWith({positive(attr("inputs:length", Value::makeFloat(1.0f), "Length along X.")),
+                          positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius."))})});
+  t.push_back({PrimType::DomeLight, "DomeLight", true, false, true,
+               "Light from every direction: a uniform colour or a lat-long texture.",
+               lightWith({attr("inputs:texture:file", Value::makeAsset(""), "Lat-long environment texture (PNG)."),
+                          tokenAttr("inputs:texture:format", "automatic",
+                                    {"automatic", "latlong", "mirroredBall", "angular", "cubeMapVerticalCross"},
+                                    "Layout of the texture.")})});
+  t.push_back({PrimType::Material, "Material", false, false, false,
+               "An OmniPBR-like surface material, bound to prims with `material:`.",
+               {attr("inputs:diffuse_color_constant", Value::makeColor3f(Vec3f(0.2f, 0.2f, 0.2f)), "Base colour when no texture is set."),
+                attr("inputs:diffuse_texture", Value::makeAsset(""), "Base colour texture (PNG)."),
+                positive(attr("inputs:texture_scale", Value::makeFloat2(1.0f, 1.0f), "UV scale of the texture.")),
+                attr("inputs:texture_rotate", Value::makeFloat(0.0f), "Rotation of the texture (degrees)."),
+                attr("inputs:project_uvw", Value::makeBool(false), "Project the texture in world space (triplanar) instead of using UVs."),
+                positive(attr("inputs:reflection_roughness_constant", Value::makeFloat(0.5f), "Surface roughness, 0 (mirror) to 1 (matte).")),
+                positive(attr("inputs:metallic_constant", Value::makeFloat(0.0f), "Metalness, 0 to 1."))}});
+  return t;
+}
+
+const std::vector<PrimTypeInfo>& table() {
+  static const std::vector<PrimTypeInfo> t = buildTable();
+  return t;
+}
+
+}  // namespace
+
+std::span<const PrimTypeInfo> allPrimTypes() { return table(); }
+
+const PrimTypeInfo& primTypeInfo(PrimType type) {
+  for (const PrimTypeInfo& info : table())
+    if (info.type == type) return info;
+  return table().front();
+}
+
+std::optional<PrimType> primTypeFromName(std::string_view name) {
+  for (const PrimTypeInfo& info : table())
+    if (info.name == name) return info.type;
+  return std::nullopt;
+}
+
+const AttributeSpec* findSchemaAttribute(PrimType type, std::string_view name) {
+  for (const AttributeSpec& spec : primTypeInfo(type).attributes)
+    if (spec.name == name) return &spec;
+  return nullptr;
+}
+
+}  // namespace sdg
