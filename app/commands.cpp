@@ -9,10 +9,11 @@
 #include "core/log.h"
 #include "scene_io/inspect.h"
 #include "scene_io/json_schema.h"
-#include "scene_io/scene_loader.h"
+#include "behavior/describe.h"
+#include "core/text.h"
+#include "run/scene_setup.h"
 
 namespace sdg::cli {
-namespace {
 
 void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("scene", args.scene, "Scene file (YAML)")->required()->type_name("SCENE");
@@ -20,13 +21,16 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
                  "Override a value after loading: /Prim/Path.attribute=VALUE or section.option=VALUE\n"
                  "(e.g. --set render.resolution=[640,480] --set /Root/Camera.focalLength=35)")
       ->type_name("TARGET=VALUE");
+  cmd.add_option("--plugin", args.plugins, "Load a behavior plugin library (.so) before reading the scene")
+      ->type_name("LIB");
+  cmd.add_option("--asset-root", args.assetRoots, "Also search this folder for assets (after the scene's asset_roots)")
+      ->type_name("DIR");
 }
 
-BehaviorCatalog catalogFor(const SceneArgs&, const SceneDocument&) { return BehaviorCatalog{}; }
+namespace {
 
-Scene load(const SceneArgs& args) {
-  SceneDocument doc = readSceneDocument(args.scene);
-  return buildScene(doc, catalogFor(args, doc), args.overrides);
+LoadedScene load(const SceneArgs& args) {
+  return loadSceneForRun(SceneRequest{args.scene, args.overrides, args.plugins, args.assetRoots});
 }
 
 size_t behaviorCount(const Scene& scene) {
@@ -43,7 +47,7 @@ void addValidate(CLI::App& app, int& exitCode) {
   cmd->footer("Exit status: 0 when the scene is valid, 2 when it is not.");
   addSceneArgs(*cmd, *args);
   cmd->callback([args, &exitCode] {
-    Scene scene = load(*args);
+    const Scene& scene = load(*args).scene;
     std::printf("%s: valid (%zu prims, %zu behaviors, %zu writers)\n", args->scene.c_str(), scene.stage.primCount(),
                 behaviorCount(scene), scene.writers.size());
     exitCode = kExitOk;
@@ -56,24 +60,49 @@ void addInspect(CLI::App& app, int& exitCode) {
                                                 "attributes, behaviors)");
   addSceneArgs(*cmd, *args);
   cmd->callback([args, &exitCode] {
-    Scene scene = load(*args);
-    std::fputs(inspectScene(scene).c_str(), stdout);
+    std::fputs(inspectScene(load(*args).scene).c_str(), stdout);
     exitCode = kExitOk;
   });
 }
 
 void addSchema(CLI::App& app, int& exitCode) {
   auto out = std::make_shared<std::string>();
+  auto plugins = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("schema", "Print the JSON Schema of the scene format (for editors and CI checks)");
   cmd->add_option("-o,--out", *out, "Write to this file instead of standard output")->type_name("FILE");
-  cmd->callback([out, &exitCode] {
-    std::string schema = sceneJsonSchema(BehaviorCatalog{});
+  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB");
+  cmd->callback([out, plugins, &exitCode] {
+    std::string schema = sceneJsonSchema(registryWithPlugins(*plugins).catalog());
     if (out->empty()) {
       std::fputs(schema.c_str(), stdout);
     } else {
       std::ofstream file(*out, std::ios::binary);
       file << schema;
       if (!file.flush()) throw RunError("cannot write " + *out);
+    }
+    exitCode = kExitOk;
+  });
+}
+
+void addDescribe(CLI::App& app, int& exitCode) {
+  auto name = std::make_shared<std::string>();
+  auto plugins = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd = app.add_subcommand("describe", "List the behaviors, or one behavior's exposed variables "
+                                                 "(type, default, documentation)");
+  cmd->add_option("name", *name, "A behavior name, e.g. locationRandomizer")->type_name("NAME");
+  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB");
+  cmd->callback([name, plugins, &exitCode] {
+    BehaviorRegistry registry = registryWithPlugins(*plugins);
+    if (name->empty()) {
+      std::fputs(describeBehaviors(registry).c_str(), stdout);
+    } else {
+      std::string text = describeBehavior(registry, *name);
+      if (text.empty()) {
+        std::vector<std::string> names = registry.catalog().names();
+        throw SceneError(SourceLoc{}, "unknown behavior " + text::quote(*name) + "; known behaviors: " +
+                                          text::join(names, ", ") + text::didYouMean(*name, names));
+      }
+      std::fputs(text.c_str(), stdout);
     }
     exitCode = kExitOk;
   });

@@ -18,10 +18,16 @@ struct SceneArgs {
   std::string scene;
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
+  std::vector<std::string> assetRoots;
 };
+
+// SCENE, --set, --plugin and --asset-root, shared by every scene command.
+void addSceneArgs(CLI::App& cmd, SceneArgs& args);
 
 void addValidate(CLI::App& app, int& exitCode);
 void addInspect(CLI::App& app, int& exitCode);
 void addSchema(CLI::App& app, int& exitCode);
+void addDescribe(CLI::App& app, int& exitCode);
+void addRun(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

@@ -19,6 +19,8 @@ constexpr const char* kDescription =
     "Examples:\n"
     "  sdgbehave validate scenes/warehouse.yaml\n"
     "  sdgbehave inspect scenes/warehouse.yaml --set render.resolution=[640,480]\n"
+    "  sdgbehave describe locationRandomizer\n"
+    "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --no-render --record changes.jsonl\n"
     "  sdgbehave schema --out schemas/scene.schema.json\n";
 
 std::string versionText() {
@@ -49,6 +51,8 @@ int main(int argc, char** argv) {
   cli::addValidate(app, exitCode);
   cli::addInspect(app, exitCode);
   cli::addSchema(app, exitCode);
+  cli::addDescribe(app, exitCode);
+  cli::addRun(app, exitCode);
 
   // Logging must be configured before subcommand callbacks run.
   app.parse_complete_callback([&] {

@@ -7,6 +7,7 @@
 
 #include "core/text.h"
 #include "scene_io/prim_reader.h"
+#include "scene_io/value_json.h"
 #include "scene_io/scene.h"
 #include "stage/xform.h"
 
@@ -19,51 +20,6 @@ constexpr const char* kIdentifierPattern = "[A-Za-z_][A-Za-z0-9_]*";
 
 Json numbers(size_t count, const char* itemType = "number") {
   return Json{{"type", "array"}, {"items", {{"type", itemType}}}, {"minItems", count}, {"maxItems", count}};
-}
-
-// Floats go through their shortest text so 20.955f stays 20.955 in JSON.
-double floatJson(float f) { return std::strtod(text::formatFloat(f).c_str(), nullptr); }
-
-Json valueJson(const Value& v) {
-  switch (v.type()) {
-    case ValueType::Bool: return v.get<bool>();
-    case ValueType::Int: return v.get<int32_t>();
-    case ValueType::UInt: return v.get<uint32_t>();
-    case ValueType::Float: return floatJson(v.get<float>());
-    case ValueType::Double: return v.get<double>();
-    case ValueType::Int2: return Json::array({v.get<Vec2i>().x(), v.get<Vec2i>().y()});
-    case ValueType::Float2: return Json::array({floatJson(v.get<Vec2f>().x()), floatJson(v.get<Vec2f>().y())});
-    case ValueType::Float3:
-    case ValueType::Color3f: {
-      const Vec3f& x = v.get<Vec3f>();
-      return Json::array({floatJson(x.x()), floatJson(x.y()), floatJson(x.z())});
-    }
-    case ValueType::Double3:
-    case ValueType::Vector3d: {
-      const Vec3d& x = v.get<Vec3d>();
-      return Json::array({x.x(), x.y(), x.z()});
-    }
-    case ValueType::Quatf: {
-      const Quatf& q = v.get<Quatf>();
-      return Json::array({floatJson(q.w()), floatJson(q.x()), floatJson(q.y()), floatJson(q.z())});
-    }
-    case ValueType::Quatd: {
-      const Quatd& q = v.get<Quatd>();
-      return Json::array({q.w(), q.x(), q.y(), q.z()});
-    }
-    case ValueType::Matrix4d: {
-      Json rows = Json::array();
-      const Matrix4d& m = v.get<Matrix4d>();
-      for (int c = 0; c < 4; ++c) rows.push_back(Json::array({m(0, c), m(1, c), m(2, c), m(3, c)}));
-      return rows;
-    }
-    case ValueType::String:
-    case ValueType::Token:
-    case ValueType::Asset: return v.get<std::string>();
-    case ValueType::AssetArray:
-    case ValueType::StringArray: return v.get<std::vector<std::string>>();
-  }
-  return nullptr;
 }
 
 Json typeSchema(ValueType type) {
@@ -106,7 +62,7 @@ Json attributeSchema(const AttributeSpec& spec) {
     if (s["type"] == "array" && s["items"].is_object()) s["items"]["minimum"] = *spec.minimum;
     else s["minimum"] = *spec.minimum;
   }
-  s["default"] = valueJson(spec.defaultValue);
+  s["default"] = valueToJson(spec.defaultValue);
   return s;
 }
 

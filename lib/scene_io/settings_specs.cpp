@@ -8,12 +8,7 @@ namespace sdg {
 namespace {
 
 AttributeSpec option(std::string name, Value fallback, std::string doc) {
-  AttributeSpec spec;
-  spec.name = std::move(name);
-  spec.type = fallback.type();
-  spec.defaultValue = std::move(fallback);
-  spec.doc = std::move(doc);
-  return spec;
+  return makeAttributeSpec(std::move(name), std::move(fallback), std::move(doc));
 }
 
 AttributeSpec atLeast(double minimum, AttributeSpec spec) {

@@ -134,4 +134,13 @@ std::string Value::toString() const {
   return {};
 }
 
+AttributeSpec makeAttributeSpec(std::string name, Value fallback, std::string doc) {
+  AttributeSpec spec;
+  spec.name = std::move(name);
+  spec.type = fallback.type();
+  spec.defaultValue = std::move(fallback);
+  spec.doc = std::move(doc);
+  return spec;
+}
+
 }  // namespace sdg

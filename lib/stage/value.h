@@ -89,4 +89,7 @@ struct AttributeSpec {
   bool primPath = false;                  // a String naming a prim: "" or an existing path
 };
 
+// A spec whose type is the fallback's type.
+AttributeSpec makeAttributeSpec(std::string name, Value fallback, std::string doc);
+
 }  // namespace sdg

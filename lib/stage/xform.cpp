@@ -1,5 +1,6 @@
 #include "stage/xform.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -97,14 +98,26 @@ Matrix3d rotationFromEuler(XformOpKind order, const Vec3d& deg) {
 }
 
 Vec3d eulerFromRotation(XformOpKind order, const Matrix3d& R) {
+  // Tait-Bryan angles for R = R_k(c) * R_j(b) * R_i(a), where (i, j, k) is
+  // the op's application order; the middle angle stays in [-90, 90] and the
+  // others in [-180, 180], so a rotation about one axis reads back as that
+  // axis' angle alone.
   const auto& axes = info(order).axes;
-  // Eigen returns (a0, a1, a2) with R = rot(i, a0) * rot(j, a1) * rot(k, a2);
-  // asking for (last, middle, first) axes gives the angles in USD's order.
-  Vec3d a = R.eulerAngles(axes[2], axes[1], axes[0]);
+  const int i = axes[0], j = axes[1], k = axes[2];
+  const double sign = ((j - i + 3) % 3 == 1) ? 1.0 : -1.0;  // cyclic order or not
+  const double sb = std::clamp(-sign * R(k, i), -1.0, 1.0);
+  double a, b = std::asin(sb), c;
+  if (std::fabs(sb) < 1.0 - 1e-12) {
+    a = std::atan2(sign * R(k, j), R(k, k));
+    c = std::atan2(sign * R(j, i), R(i, i));
+  } else {  // gimbal lock: only a + c (or a - c) is defined; put it all in c
+    a = 0.0;
+    c = std::atan2(-sign * R(i, j), R(j, j));
+  }
   Vec3d out;
-  out[axes[2]] = degrees(a[0]);
-  out[axes[1]] = degrees(a[1]);
-  out[axes[0]] = degrees(a[2]);
+  out[i] = degrees(a);
+  out[j] = degrees(b);
+  out[k] = degrees(c);
   return out;
 }
 

@@ -5,12 +5,13 @@
 #include <span>
 #include <string>
 
+#include "behaviors/builtin_behaviors.h"
 #include "scene_io/scene_loader.h"
 
 namespace sdg::test {
 
-// The behaviors the shipped scenes may use (none registered yet).
-inline BehaviorCatalog testCatalog() { return BehaviorCatalog{}; }
+// The behaviors the shipped scenes may use: the built-ins.
+inline BehaviorCatalog testCatalog() { return builtinRegistry().catalog(); }
 
 inline Scene loadText(const std::string& yaml, const BehaviorCatalog& catalog = {},
                       std::span<const std::string> overrides = {}) {

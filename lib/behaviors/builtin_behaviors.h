@@ -1,0 +1,21 @@
+#pragma once
+// The built-in behaviors, listed in one table (builtin_behaviors.cpp).
+#include "behavior/registry.h"
+
+namespace sdg {
+
+void registerBuiltinBehaviors(BehaviorRegistry& registry);
+
+// Each behavior file provides its spec and factory.
+BehaviorSpec locationRandomizerSpec();
+std::unique_ptr<Behavior> makeLocationRandomizer();
+BehaviorSpec rotationRandomizerSpec();
+std::unique_ptr<Behavior> makeRotationRandomizer();
+BehaviorSpec lookAtBehaviorSpec();
+std::unique_ptr<Behavior> makeLookAtBehavior();
+BehaviorSpec lightRandomizerSpec();
+std::unique_ptr<Behavior> makeLightRandomizer();
+BehaviorSpec textureRandomizerSpec();
+std::unique_ptr<Behavior> makeTextureRandomizer();
+
+}  // namespace sdg

@@ -1,0 +1,19 @@
+#pragma once
+// Stage helpers behaviors share when they create prims under /Behaviors.
+#include <string>
+
+#include "stage/stage.h"
+
+namespace sdg {
+
+inline constexpr const char* kBehaviorsScope = "/Behaviors";
+
+// `path` when free, else path_01, path_02, ... (the first free one).
+std::string nextFreePath(const Stage& stage, const std::string& path);
+// Defines `path` as a Scope, and any missing ancestors too.
+Prim& ensureScope(Stage& stage, const std::string& path);
+// Removes Scope prims left without children, post-order, from `root` down
+// (root included).
+void removeEmptyScopes(Stage& stage, const std::string& root);
+
+}  // namespace sdg
