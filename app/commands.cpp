@@ -20,11 +20,14 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("--set", args.overrides,
                  "Override a value after loading: /Prim/Path.attribute=VALUE or section.option=VALUE\n"
                  "(e.g. --set render.resolution=[640,480] --set /Root/Camera.focalLength=35)")
-      ->type_name("TARGET=VALUE");
+      ->type_name("TARGET=VALUE")
+      ->allow_extra_args(false);
   cmd.add_option("--plugin", args.plugins, "Load a behavior plugin library (.so) before reading the scene")
-      ->type_name("LIB");
+      ->type_name("LIB")
+      ->allow_extra_args(false);
   cmd.add_option("--asset-root", args.assetRoots, "Also search this folder for assets (after the scene's asset_roots)")
-      ->type_name("DIR");
+      ->type_name("DIR")
+      ->allow_extra_args(false);
 }
 
 namespace {
@@ -70,7 +73,7 @@ void addSchema(CLI::App& app, int& exitCode) {
   auto plugins = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("schema", "Print the JSON Schema of the scene format (for editors and CI checks)");
   cmd->add_option("-o,--out", *out, "Write to this file instead of standard output")->type_name("FILE");
-  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB");
+  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB")->allow_extra_args(false);
   cmd->callback([out, plugins, &exitCode] {
     std::string schema = sceneJsonSchema(registryWithPlugins(*plugins).catalog());
     if (out->empty()) {
@@ -90,7 +93,7 @@ void addDescribe(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand("describe", "List the behaviors, or one behavior's exposed variables "
                                                  "(type, default, documentation)");
   cmd->add_option("name", *name, "A behavior name, e.g. locationRandomizer")->type_name("NAME");
-  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB");
+  cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB")->allow_extra_args(false);
   cmd->callback([name, plugins, &exitCode] {
     BehaviorRegistry registry = registryWithPlugins(*plugins);
     if (name->empty()) {
