@@ -29,5 +29,6 @@ void addInspect(CLI::App& app, int& exitCode);
 void addSchema(CLI::App& app, int& exitCode);
 void addDescribe(CLI::App& app, int& exitCode);
 void addRun(CLI::App& app, int& exitCode);
+void addRender(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

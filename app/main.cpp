@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   cli::addSchema(app, exitCode);
   cli::addDescribe(app, exitCode);
   cli::addRun(app, exitCode);
+  cli::addRender(app, exitCode);
 
   // Logging must be configured before subcommand callbacks run.
   app.parse_complete_callback([&] {

@@ -1,0 +1,64 @@
+#include <cstdio>
+#include <memory>
+#include <regex>
+
+#include "commands.h"
+#include "core/diagnostics.h"
+#include "core/log.h"
+#include "run/quick_render.h"
+
+namespace sdg::cli {
+
+namespace {
+struct RenderArgs {
+  SceneArgs scene;
+  std::string camera;
+  std::string out;
+  std::string resolution;
+  std::optional<int> subframes;
+};
+
+// "640x480" -> (640, 480); a bad value is a usage error (exit 2).
+std::pair<int, int> parseResolution(const std::string& text) {
+  std::smatch m;
+  static const std::regex pattern("([0-9]{1,5})x([0-9]{1,5})");
+  if (!std::regex_match(text, m, pattern) || std::stoi(m[1]) < 1 || std::stoi(m[2]) < 1 ||
+      std::stoi(m[1]) > 16384 || std::stoi(m[2]) > 16384)
+    throw SceneError(SourceLoc{"--resolution", 0, 0},
+                     "expected WIDTHxHEIGHT with each side 1 to 16384 (e.g. 640x480), found '" + text + "'");
+  return {std::stoi(m[1]), std::stoi(m[2])};
+}
+}  // namespace
+
+void addRender(CLI::App& app, int& exitCode) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render one picture of a scene as authored (a quick look)");
+  addSceneArgs(*cmd, args->scene);
+  cmd->add_option("--camera", args->camera, "Camera prim (default: the first of capture.cameras)")->type_name("PATH");
+  cmd->add_option("-o,--out", args->out, "PNG file to write")->required()->type_name("FILE.png");
+  cmd->add_option("--resolution", args->resolution, "Image size, e.g. 640x480 (overrides render.resolution)")
+      ->type_name("WxH");
+  cmd->add_option("--subframes", args->subframes, "Anti-aliasing samples (overrides render.subframes)")
+      ->check(CLI::Range(1, 64))
+      ->type_name("K");
+  cmd->footer("Example:\n  sdgbehave render scenes/warehouse.yaml --out warehouse.png --resolution 640x480");
+  cmd->callback([args, &exitCode] {
+    QuickRenderOptions options;
+    options.camera = args->camera;
+    options.outputPath = args->out;
+    options.subframes = args->subframes;
+    if (!args->resolution.empty()) {
+      auto [w, h] = parseResolution(args->resolution);
+      options.width = w;
+      options.height = h;
+    }
+    LoadedScene loaded = loadSceneForRun(
+        SceneRequest{args->scene.scene, args->scene.overrides, args->scene.plugins, args->scene.assetRoots});
+    QuickRenderResult result = renderOnePicture(loaded, options);
+    log::info("wrote " + args->out + " (" + std::to_string(result.width) + " x " + std::to_string(result.height) +
+              ", camera " + result.camera + ", " + result.renderer + ")");
+    exitCode = kExitOk;
+  });
+}
+
+}  // namespace sdg::cli

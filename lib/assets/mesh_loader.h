@@ -1,0 +1,20 @@
+#pragma once
+// Mesh files through assimp: OBJ (+MTL), glTF/GLB, FBX, PLY, STL, DAE.
+// Triangulated, normals generated where missing, node transforms baked in,
+// the file's unit scale applied (FBX's UnitScaleFactor; glTF is metres),
+// one part per material with its base colour, texture, roughness, metallic.
+#include <string>
+
+#include "assets/mesh_data.h"
+
+namespace sdg {
+
+// Documented limit: meshes above this many triangles are refused.
+inline constexpr size_t kMaxMeshTriangles = 50'000'000;
+
+// Loads `path` (or only the meshes named `submesh`); throws RunError naming
+// the file for unreadable, corrupt or unsupported files, NaN vertices, no
+// triangles, or more than kMaxMeshTriangles.
+MeshData loadMeshFile(const std::string& path, const std::string& submesh = "");
+
+}  // namespace sdg

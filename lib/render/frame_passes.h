@@ -1,0 +1,23 @@
+#pragma once
+// The buffers one camera's frame produces, rows top to bottom. Buffers are
+// reused from frame to frame (no per-frame allocation once sized).
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace sdg {
+
+struct FramePasses {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;                  // 4 per pixel, sRGB, alpha 255
+  std::vector<float> normals;                 // 4 per pixel: world normal xyz, w 0; zero where nothing was hit
+  std::vector<float> distanceToCamera;        // metres; +inf where nothing was hit
+  std::vector<float> distanceToImagePlane;    // metres along the optical axis; +inf where nothing was hit
+  std::vector<uint32_t> instanceIds;          // RenderItem::instanceId; 0 = background
+
+  void resize(int w, int h);
+  size_t pixelCount() const { return size_t(width) * size_t(height); }
+};
+
+}  // namespace sdg

@@ -1,0 +1,171 @@
+#include "render/render_list.h"
+
+#include <cmath>
+
+#include "core/text.h"
+#include "stage/xform_edit.h"
+
+namespace sdg {
+
+std::string MeshKey::id() const {
+  std::string key(primTypeInfo(shape).name);
+  if (shape == PrimType::Mesh) return key + ":" + asset + "#" + submesh;
+  return key + ":" + text::formatDouble(a) + ":" + text::formatDouble(b) + ":" + text::formatDouble(c) + ":" + axis;
+}
+
+const Prim* boundMaterial(const Stage& stage, const Prim& prim) {
+  const Prim* closest = nullptr;
+  const Prim* strongest = nullptr;
+  for (const Prim* p = &prim; p && !p->isPseudoRoot(); p = p->parent()) {
+    const auto& binding = p->material();
+    if (!binding) continue;
+    const Prim* m = stage.find(binding->path);
+    if (!m || m->type() != PrimType::Material) continue;
+    if (!closest) closest = m;
+    if (p != &prim && binding->strength == "strongerThanDescendants") strongest = m;
+  }
+  return strongest ? strongest : closest;
+}
+
+namespace {
+
+bool invisible(const Prim& prim) {
+  for (const Prim* p = &prim; p && !p->isPseudoRoot(); p = p->parent()) {
+    const Value* v = p->value("visibility");
+    if (v && v->get<std::string>() == "invisible") return true;
+  }
+  return false;
+}
+
+char axisOf(const Prim& prim) { return prim.getString("axis")[0]; }
+
+MeshKey meshKeyOf(const Prim& prim) {
+  MeshKey key;
+  key.shape = prim.type();
+  switch (prim.type()) {
+    case PrimType::Mesh:
+      key.asset = prim.getString("asset");
+      key.submesh = prim.getString("submesh");
+      break;
+    case PrimType::Cube: key.a = prim.getDouble("size"); break;
+    case PrimType::Sphere: key.a = prim.getDouble("radius"); break;
+    case PrimType::Cylinder:
+    case PrimType::Cone:
+    case PrimType::Capsule:
+      key.a = prim.getDouble("radius");
+      key.b = prim.getDouble("height");
+      key.axis = axisOf(prim);
+      break;
+    case PrimType::Plane:
+      key.b = prim.getDouble("width");
+      key.c = prim.getDouble("length");
+      key.axis = axisOf(prim);
+      break;
+    default: break;
+  }
+  return key;
+}
+
+RenderMaterial materialOf(const Stage& stage, const Prim& prim) {
+  RenderMaterial m;
+  const Prim* material = boundMaterial(stage, prim);
+  if (!material) {
+    m.baseColor = prim.value("primvars:displayColor")->get<Vec3f>();
+    return m;
+  }
+  m.fromPrim = true;
+  m.baseColor = material->value("inputs:diffuse_color_constant")->get<Vec3f>();
+  m.texture = material->getString("inputs:diffuse_texture");
+  m.textureScale = material->value("inputs:texture_scale")->get<Vec2f>();
+  m.textureRotate = material->getFloat("inputs:texture_rotate");
+  m.projectUvw = material->getBool("inputs:project_uvw");
+  m.roughness = material->getFloat("inputs:reflection_roughness_constant");
+  m.metallic = material->getFloat("inputs:metallic_constant");
+  return m;
+}
+
+RenderLight lightOf(const Stage& stage, const Prim& prim) {
+  RenderLight l;
+  l.path = prim.path();
+  const Matrix4d world = stage.worldMatrix(prim);
+  l.position = world.block<3, 1>(0, 3);
+  l.direction = (decompose(world).rotation * -Vec3d::UnitZ()).normalized();
+  const float scale = prim.getFloat("inputs:intensity") * std::exp2(prim.getFloat("inputs:exposure"));
+  l.radiance = prim.value("inputs:color")->get<Vec3f>() * scale;
+  switch (prim.type()) {
+    case PrimType::DistantLight:
+      l.kind = LightKind::Distant;
+      l.angle = prim.getFloat("inputs:angle");
+      break;
+    case PrimType::SphereLight:
+      l.kind = LightKind::Sphere;
+      l.radius = prim.getFloat("inputs:radius");  // treatAsPoint keeps the power of this radius
+      break;
+    case PrimType::RectLight:
+      l.kind = LightKind::Rect;
+      l.width = prim.getFloat("inputs:width");
+      l.height = prim.getFloat("inputs:height");
+      break;
+    case PrimType::DiskLight:
+      l.kind = LightKind::Disk;
+      l.radius = prim.getFloat("inputs:radius");
+      break;
+    case PrimType::CylinderLight:
+      l.kind = LightKind::Cylinder;
+      l.radius = prim.getFloat("inputs:radius");
+      l.length = prim.getFloat("inputs:length");
+      break;
+    default:
+      l.kind = LightKind::Dome;
+      l.texture = prim.getString("inputs:texture:file");
+      break;
+  }
+  return l;
+}
+
+RenderCamera cameraOf(const Stage& stage, const Prim& prim) {
+  RenderCamera c;
+  c.path = prim.path();
+  Decomposed d = decompose(stage.worldMatrix(prim));
+  c.worldFromCamera = compose(d.translation, d.rotation, Vec3d::Ones());
+  c.focalLength = prim.getFloat("focalLength");
+  c.horizontalAperture = prim.getFloat("horizontalAperture");
+  c.verticalAperture = prim.getFloat("verticalAperture");
+  c.horizontalApertureOffset = prim.getFloat("horizontalApertureOffset");
+  c.verticalApertureOffset = prim.getFloat("verticalApertureOffset");
+  Vec2f clip = prim.value("clippingRange")->get<Vec2f>();
+  c.nearClip = clip.x();
+  c.farClip = clip.y();
+  c.orthographic = prim.getString("projection") == "orthographic";
+  return c;
+}
+
+}  // namespace
+
+RenderList buildRenderList(const Stage& stage) {
+  RenderList list;
+  list.metersPerUnit = stage.metadata().metersPerUnit;
+  uint32_t nextId = 1;
+  stage.traverse([&](const Prim& prim) {
+    const PrimTypeInfo& info = prim.typeInfo();
+    if (info.gprim) {
+      uint32_t id = nextId++;  // ids follow stage order, hidden prims included, so they stay stable
+      if (invisible(prim)) return;
+      RenderItem item;
+      item.primPath = prim.path();
+      item.mesh = meshKeyOf(prim);
+      item.worldFromLocal = stage.worldMatrix(prim);
+      item.material = materialOf(stage, prim);
+      item.instanceId = id;
+      item.doubleSided = prim.getBool("doubleSided");
+      list.items.push_back(std::move(item));
+    } else if (info.light && !invisible(prim)) {
+      list.lights.push_back(lightOf(stage, prim));
+    } else if (prim.type() == PrimType::Camera) {
+      list.cameras.push_back(cameraOf(stage, prim));
+    }
+  });
+  return list;
+}
+
+}  // namespace sdg

@@ -1,0 +1,83 @@
+#pragma once
+// A plain per-frame description of what to draw, built from a read-only
+// stage: cameras, geometry with world transforms, materials and instance ids,
+// and lights. The GL code consumes only this; it never sees the stage, so
+// the list can be inspected in tests without a GL context.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stage/stage.h"
+
+namespace sdg {
+
+struct RenderCamera {
+  std::string path;
+  Matrix4d worldFromCamera = Matrix4d::Identity();  // scale removed
+  float focalLength = 50.0f;
+  float horizontalAperture = 20.955f;
+  float verticalAperture = 15.2908f;
+  float horizontalApertureOffset = 0.0f;
+  float verticalApertureOffset = 0.0f;
+  float nearClip = 1.0f;
+  float farClip = 1e6f;
+  bool orthographic = false;
+};
+
+// What geometry to draw: a procedural shape or an asset file.
+struct MeshKey {
+  PrimType shape = PrimType::Cube;  // Mesh for files
+  std::string asset;                // resolved later by the renderer's cache
+  std::string submesh;
+  double a = 0, b = 0, c = 0;       // size / radius, height / width, length
+  char axis = 'Z';
+  std::string id() const;           // a stable cache key
+};
+
+struct RenderMaterial {
+  bool fromPrim = false;  // a Material prim is bound; otherwise the mesh file's or displayColor
+  Vec3f baseColor{0.5f, 0.5f, 0.5f};
+  std::string texture;    // as written in the scene; "" for none
+  Vec2f textureScale{1.0f, 1.0f};
+  float textureRotate = 0.0f;  // degrees
+  bool projectUvw = false;
+  float roughness = 0.5f;
+  float metallic = 0.0f;
+};
+
+struct RenderItem {
+  std::string primPath;
+  MeshKey mesh;
+  Matrix4d worldFromLocal = Matrix4d::Identity();
+  RenderMaterial material;
+  uint32_t instanceId = 0;  // 1-based, in stage order; 0 is background
+  bool doubleSided = false;
+};
+
+enum class LightKind { Distant, Sphere, Rect, Disk, Cylinder, Dome };
+
+struct RenderLight {
+  std::string path;
+  LightKind kind = LightKind::Distant;
+  Vec3f radiance{1, 1, 1};  // intensity * 2^exposure * color
+  Vec3d position = Vec3d::Zero();
+  Vec3d direction = -Vec3d::UnitZ();  // the light's local -Z in world space
+  float radius = 0.0f;  // sphere, disk, cylinder
+  float width = 0.0f, height = 0.0f, length = 0.0f;
+  float angle = 0.0f;   // distant: angular diameter (degrees)
+  std::string texture;  // dome
+};
+
+struct RenderList {
+  std::vector<RenderCamera> cameras;
+  std::vector<RenderItem> items;
+  std::vector<RenderLight> lights;
+  double metersPerUnit = 1.0;
+};
+
+RenderList buildRenderList(const Stage& stage);
+// The material bound to a prim: the closest binding above it, unless an
+// ancestor binds strongerThanDescendants (then the highest such one wins).
+const Prim* boundMaterial(const Stage& stage, const Prim& prim);
+
+}  // namespace sdg

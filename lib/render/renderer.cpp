@@ -1,0 +1,454 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "assets/image.h"
+#include "assets/mesh_loader.h"
+#include "assets/primitives.h"
+#include "core/diagnostics.h"
+#include "render/camera_math.h"
+#include "render/shaders.h"
+#include "stage/xform.h"
+
+namespace sdg {
+
+void FramePasses::resize(int w, int h) {
+  width = w;
+  height = h;
+  const size_t n = size_t(w) * size_t(h);
+  rgba.resize(n * 4);
+  normals.resize(n * 4);
+  distanceToCamera.resize(n);
+  distanceToImagePlane.resize(n);
+  instanceIds.resize(n);
+}
+
+struct Renderer::GpuMesh {
+  unsigned vao = 0;
+  unsigned buffers[4] = {0, 0, 0, 0};
+  std::vector<MeshPart> parts;
+  Eigen::AlignedBox3f bounds;
+};
+
+namespace {
+
+unsigned compile(const GlApi& gl, GLenum type, const char* source) {
+  unsigned shader = gl.glCreateShader(type);
+  gl.glShaderSource(shader, 1, &source, nullptr);
+  gl.glCompileShader(shader);
+  GLint ok = 0;
+  gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    gl.glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    throw RunError(std::string("renderer: shader compilation failed: ") + log);
+  }
+  return shader;
+}
+
+unsigned link(const GlApi& gl, const char* vertex, const char* fragment) {
+  unsigned vs = compile(gl, GL_VERTEX_SHADER, vertex), fs = compile(gl, GL_FRAGMENT_SHADER, fragment);
+  unsigned program = gl.glCreateProgram();
+  gl.glAttachShader(program, vs);
+  gl.glAttachShader(program, fs);
+  gl.glLinkProgram(program);
+  gl.glDeleteShader(vs);
+  gl.glDeleteShader(fs);
+  GLint ok = 0;
+  gl.glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096];
+    gl.glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    throw RunError(std::string("renderer: shader linking failed: ") + log);
+  }
+  return program;
+}
+
+Eigen::Matrix4f toFloat(const Matrix4d& m) { return m.cast<float>(); }
+
+void setMatrix(const GlApi& gl, unsigned program, const char* name, const Matrix4d& m) {
+  Eigen::Matrix4f f = toFloat(m);  // Eigen is column-major, as GL expects
+  gl.glUniformMatrix4fv(gl.glGetUniformLocation(program, name), 1, GL_FALSE, f.data());
+}
+
+unsigned makeTexture(const GlApi& gl, GLint internalFormat, int w, int h, GLenum format, GLenum type) {
+  unsigned t = 0;
+  gl.glGenTextures(1, &t);
+  gl.glBindTexture(GL_TEXTURE_2D, t);
+  gl.glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, w, h, 0, format, type, nullptr);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  return t;
+}
+
+// Low-discrepancy sub-pixel offsets in [-0.5, 0.5) (Halton bases 2 and 3).
+double halton(int index, int base) {
+  double f = 1, r = 0;
+  for (int i = index; i > 0; i /= base) {
+    f /= base;
+    r += f * (i % base);
+  }
+  return r;
+}
+
+int lightTypeCode(LightKind kind) {
+  switch (kind) {
+    case LightKind::Distant: return 0;
+    case LightKind::Sphere: return 1;
+    case LightKind::Rect: return 2;
+    case LightKind::Disk: return 3;
+    case LightKind::Cylinder: return 4;
+    case LightKind::Dome: return 5;
+  }
+  return 0;
+}
+
+}  // namespace
+
+MeshData meshDataFor(const MeshKey& key, const AssetResolver& assets, const std::string& primPath) {
+  switch (key.shape) {
+    case PrimType::Cube: return makeCube(key.a);
+    case PrimType::Sphere: return makeSphere(key.a);
+    case PrimType::Cylinder: return makeCylinder(key.a, key.b, key.axis);
+    case PrimType::Cone: return makeCone(key.a, key.b, key.axis);
+    case PrimType::Capsule: return makeCapsule(key.a, key.b, key.axis);
+    case PrimType::Plane: return makePlane(key.b, key.c, key.axis);
+    default: break;
+  }
+  std::optional<std::string> path = assets.resolve(key.asset);
+  if (!path) throw RunError(primPath + ": mesh '" + key.asset + "' not found; " + assets.describeSearch(key.asset));
+  try {
+    return loadMeshFile(*path, key.submesh);
+  } catch (const RunError& e) {
+    throw RunError(primPath + ": " + e.what());
+  }
+}
+
+Renderer::Renderer(GlContext& context, const AssetResolver& assets, const RenderSettings& settings)
+    : context_(context), gl_(context.gl()), assets_(assets), settings_(settings) {
+  sceneProgram_ = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment);
+  shadowProgram_ = link(gl_, shaders::kShadowVertex, shaders::kShadowFragment);
+  gl_.glGenFramebuffers(1, &framebuffer_);
+  gl_.glGenFramebuffers(1, &shadowFramebuffer_);
+  // Shadow map with hardware depth comparison (bilinear PCF).
+  shadowTexture_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize,
+                               GL_DEPTH_COMPONENT, GL_FLOAT);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
+  gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture_, 0);
+  GLenum none = GL_NONE;
+  gl_.glDrawBuffers(1, &none);
+  const uint8_t white[4] = {255, 255, 255, 255};
+  whiteTexture_ = makeTexture(gl_, GL_RGBA8, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+}
+
+Renderer::~Renderer() {
+  for (auto& [key, m] : meshes_) {
+    gl_.glDeleteVertexArrays(1, &m->vao);
+    gl_.glDeleteBuffers(4, m->buffers);
+  }
+  for (auto& [key, t] : textures_) gl_.glDeleteTextures(1, &t);
+  unsigned textures[] = {colorTexture_, normalTexture_, planeTexture_, idTexture_, depthTexture_, shadowTexture_, whiteTexture_};
+  gl_.glDeleteTextures(7, textures);
+  gl_.glDeleteFramebuffers(1, &framebuffer_);
+  gl_.glDeleteFramebuffers(1, &shadowFramebuffer_);
+  gl_.glDeleteProgram(sceneProgram_);
+  gl_.glDeleteProgram(shadowProgram_);
+}
+
+const Renderer::GpuMesh& Renderer::mesh(const RenderItem& item) {
+  std::string key = item.mesh.id();
+  auto it = meshes_.find(key);
+  if (it != meshes_.end()) return *it->second;
+  MeshData data = meshDataFor(item.mesh, assets_, item.primPath);
+  auto m = std::make_unique<GpuMesh>();
+  gl_.glGenVertexArrays(1, &m->vao);
+  gl_.glBindVertexArray(m->vao);
+  gl_.glGenBuffers(4, m->buffers);
+  auto upload = [&](unsigned buffer, unsigned location, int components, const void* data_, size_t bytes) {
+    gl_.glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    gl_.glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), data_, GL_STATIC_DRAW);
+    gl_.glEnableVertexAttribArray(location);
+    gl_.glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+  };
+  upload(m->buffers[0], 0, 3, data.positions.data(), data.positions.size() * sizeof(Vec3f));
+  upload(m->buffers[1], 1, 3, data.normals.data(), data.normals.size() * sizeof(Vec3f));
+  upload(m->buffers[2], 2, 2, data.uvs.data(), data.uvs.size() * sizeof(Eigen::Vector2f));
+  gl_.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->buffers[3]);
+  gl_.glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(data.indices.size() * sizeof(uint32_t)), data.indices.data(),
+                   GL_STATIC_DRAW);
+  gl_.glBindVertexArray(0);
+  m->parts = std::move(data.parts);
+  m->bounds = data.bounds;
+  return *meshes_.emplace(key, std::move(m)).first->second;
+}
+
+unsigned Renderer::texture(const std::string& path, const std::string& primPath) {
+  auto it = textures_.find(path);
+  if (it != textures_.end()) return it->second;
+  std::optional<std::string> resolved = assets_.resolve(path);
+  if (!resolved) throw RunError(primPath + ": texture '" + path + "' not found; " + assets_.describeSearch(path));
+  ImageRgba8 image;
+  try {
+    image = loadPng(*resolved);
+  } catch (const RunError& e) {
+    throw RunError(primPath + ": " + e.what());
+  }
+  unsigned t = 0;
+  gl_.glGenTextures(1, &t);
+  gl_.glBindTexture(GL_TEXTURE_2D, t);
+  gl_.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // sRGB storage: sampling returns linear colour for shading.
+  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, GLsizei(image.width), GLsizei(image.height), 0, GL_RGBA,
+                   GL_UNSIGNED_BYTE, image.pixels.data());
+  gl_.glGenerateMipmap(GL_TEXTURE_2D);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  textures_.emplace(path, t);
+  return t;
+}
+
+void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& lightViewProjection) {
+  // Fit an orthographic light frustum around everything drawn.
+  Eigen::AlignedBox3d box;
+  for (const RenderItem& item : list.items) {
+    const Eigen::AlignedBox3f& b = mesh(item).bounds;
+    for (int c = 0; c < 8; ++c) {
+      Vec3d corner = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
+      box.extend((item.worldFromLocal * corner.homogeneous()).head<3>());
+    }
+  }
+  if (box.isEmpty()) box.extend(Vec3d::Zero());
+  const Vec3d centre = box.center();
+  const double radius = std::max(box.diagonal().norm() / 2, 1e-3);
+  const Vec3d forward = list.lights[size_t(lightIndex)].direction.normalized();
+  Vec3d up = std::fabs(forward.z()) < 0.9 ? Vec3d::UnitZ() : Vec3d::UnitX();
+  Vec3d right = forward.cross(up).normalized();
+  up = right.cross(forward);
+  Matrix4d view = Matrix4d::Identity();
+  view.block<1, 3>(0, 0) = right.transpose();
+  view.block<1, 3>(1, 0) = up.transpose();
+  view.block<1, 3>(2, 0) = -forward.transpose();
+  Vec3d eye = centre - forward * (2 * radius);
+  view.block<3, 1>(0, 3) = -view.block<3, 3>(0, 0) * eye;
+  Matrix4d ortho = Matrix4d::Identity();
+  ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
+  ortho(2, 2) = -2.0 / (4 * radius);
+  ortho(2, 3) = -1.0;
+  lightViewProjection = ortho * view;
+
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
+  gl_.glViewport(0, 0, settings_.shadowMapSize, settings_.shadowMapSize);
+  const float one = 1.0f;
+  gl_.glClearBufferfv(GL_DEPTH, 0, &one);
+  gl_.glEnable(GL_DEPTH_TEST);
+  gl_.glEnable(GL_POLYGON_OFFSET_FILL);
+  gl_.glPolygonOffset(2.0f, 4.0f);
+  gl_.glUseProgram(shadowProgram_);
+  setMatrix(gl_, shadowProgram_, "uLightViewProjection", lightViewProjection);
+  for (const RenderItem& item : list.items) {
+    const GpuMesh& m = mesh(item);
+    setMatrix(gl_, shadowProgram_, "uWorldFromLocal", item.worldFromLocal);
+    gl_.glBindVertexArray(m.vao);
+    for (const MeshPart& part : m.parts)
+      gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                         reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+  }
+  gl_.glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
+void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter,
+                         const Matrix4d& lightViewProjection, int shadowLight) {
+  const int w = settings_.width, h = settings_.height;
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  gl_.glViewport(0, 0, w, h);
+  Vec3f ambient = Vec3f::Zero();
+  for (const RenderLight& l : list.lights)
+    if (l.kind == LightKind::Dome) ambient += l.radiance;
+  // The background shows the dome's colour through the same tone curve.
+  float background[4] = {0, 0, 0, 1};
+  for (int c = 0; c < 3; ++c) {
+    float mapped = 1.0f - std::exp(-ambient[c] * settings_.exposureScale);
+    background[c] = mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  const float normalClear[4] = {0, 0, 0, inf}, planeClear[4] = {inf, 0, 0, 0};
+  const unsigned idClear[4] = {0, 0, 0, 0};
+  const float depthClear = 1.0f;
+  gl_.glClearBufferfv(GL_COLOR, 0, background);
+  gl_.glClearBufferfv(GL_COLOR, 1, normalClear);
+  gl_.glClearBufferfv(GL_COLOR, 2, planeClear);
+  gl_.glClearBufferuiv(GL_COLOR, 3, idClear);
+  gl_.glClearBufferfv(GL_DEPTH, 0, &depthClear);
+  gl_.glEnable(GL_DEPTH_TEST);
+  gl_.glDepthFunc(GL_LESS);
+
+  const unsigned p = sceneProgram_;
+  gl_.glUseProgram(p);
+  const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
+  setMatrix(gl_, p, "uViewProjection", viewProjection);
+  setMatrix(gl_, p, "uLightViewProjection", lightViewProjection);
+  const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
+  const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
+  auto loc = [&](const char* name) { return gl_.glGetUniformLocation(p, name); };
+  gl_.glUniform3f(loc("uCameraPosition"), float(eye.x()), float(eye.y()), float(eye.z()));
+  gl_.glUniform3f(loc("uCameraForward"), float(forward.x()), float(forward.y()), float(forward.z()));
+  gl_.glUniform1f(loc("uMetersPerUnit"), float(list.metersPerUnit));
+  gl_.glUniform1f(loc("uExposureScale"), settings_.exposureScale);
+  gl_.glUniform3f(loc("uAmbient"), ambient.x(), ambient.y(), ambient.z());
+  gl_.glUniform1f(loc("uShadowTexel"), 1.0f / float(settings_.shadowMapSize));
+
+  // Lights (the dome is the ambient term above).
+  int types[shaders::kMaxLights] = {};
+  float radiance[3 * shaders::kMaxLights] = {}, position[3 * shaders::kMaxLights] = {},
+        direction[3 * shaders::kMaxLights] = {}, params[4 * shaders::kMaxLights] = {};
+  int count = 0, shadowSlot = -1;
+  for (size_t i = 0; i < list.lights.size() && count < shaders::kMaxLights; ++i) {
+    const RenderLight& l = list.lights[i];
+    if (l.kind == LightKind::Dome) continue;
+    if (int(i) == shadowLight) shadowSlot = count;
+    types[count] = lightTypeCode(l.kind);
+    for (int c = 0; c < 3; ++c) {
+      radiance[3 * count + c] = l.radiance[c];
+      position[3 * count + c] = float(l.position[c]);
+      direction[3 * count + c] = float(l.direction[c]);
+    }
+    params[4 * count + 0] = l.radius;
+    params[4 * count + 1] = l.width;
+    params[4 * count + 2] = l.height;
+    params[4 * count + 3] = l.length;
+    ++count;
+  }
+  gl_.glUniform1i(loc("uLightCount"), count);
+  gl_.glUniform1iv(loc("uLightType"), shaders::kMaxLights, types);
+  gl_.glUniform3fv(loc("uLightRadiance"), shaders::kMaxLights, radiance);
+  gl_.glUniform3fv(loc("uLightPosition"), shaders::kMaxLights, position);
+  gl_.glUniform3fv(loc("uLightDirection"), shaders::kMaxLights, direction);
+  gl_.glUniform4fv(loc("uLightParams"), shaders::kMaxLights, params);
+  gl_.glUniform1i(loc("uShadowLight"), shadowSlot);
+  gl_.glActiveTexture(GL_TEXTURE1);
+  gl_.glBindTexture(GL_TEXTURE_2D, shadowTexture_);
+  gl_.glUniform1i(loc("uShadowMap"), 1);
+  gl_.glUniform1i(loc("uTexture"), 0);
+  gl_.glActiveTexture(GL_TEXTURE0);
+
+  for (const RenderItem& item : list.items) {
+    const GpuMesh& m = mesh(item);
+    setMatrix(gl_, p, "uWorldFromLocal", item.worldFromLocal);
+    Matrix4d normalMatrix = Matrix4d::Identity();
+    normalMatrix.block<3, 3>(0, 0) = item.worldFromLocal.block<3, 3>(0, 0).inverse().transpose();
+    setMatrix(gl_, p, "uNormalMatrix", normalMatrix);
+    gl_.glUniform1ui(loc("uInstanceId"), item.instanceId);
+    gl_.glBindVertexArray(m.vao);
+    for (const MeshPart& part : m.parts) {
+      // The prim's bound material wins; else the file's; else displayColor.
+      const bool useFile = !item.material.fromPrim && part.hasMaterial;
+      const Vec3f base = useFile ? part.baseColor : item.material.baseColor;
+      const std::string& tex = useFile ? part.texture : item.material.texture;
+      gl_.glUniform3f(loc("uBaseColor"), base.x(), base.y(), base.z());
+      gl_.glUniform1f(loc("uRoughness"), useFile ? part.roughness : item.material.roughness);
+      gl_.glUniform1f(loc("uMetallic"), useFile ? part.metallic : item.material.metallic);
+      gl_.glUniform1i(loc("uHasTexture"), tex.empty() ? 0 : 1);
+      gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath));
+      gl_.glUniform2f(loc("uTextureScale"), item.material.textureScale.x(), item.material.textureScale.y());
+      gl_.glUniform1f(loc("uTextureRotate"), item.material.textureRotate);
+      gl_.glUniform1i(loc("uProjectUvw"), item.material.projectUvw ? 1 : 0);
+      gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                         reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+    }
+  }
+  gl_.glBindVertexArray(0);
+}
+
+void Renderer::readBack(FramePasses& out, bool colorOnly) {
+  const int w = settings_.width, h = settings_.height;
+  const size_t n = size_t(w) * size_t(h);
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  // GL rows run bottom to top; outputs run top to bottom.
+  auto flipInto = [&](const auto* source, auto* target, size_t perPixel) {
+    const size_t row = size_t(w) * perPixel;
+    for (int y = 0; y < h; ++y) std::copy_n(source + size_t(h - 1 - y) * row, row, target + size_t(y) * row);
+  };
+  scratchRgba_.resize(n * 4);
+  gl_.glReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, scratchRgba_.data());
+  if (colorOnly) {
+    for (int y = 0; y < h; ++y)
+      for (size_t i = 0; i < size_t(w) * 4; ++i) colorSum_[size_t(y) * w * 4 + i] += scratchRgba_[size_t(h - 1 - y) * w * 4 + i];
+    return;
+  }
+  flipInto(scratchRgba_.data(), out.rgba.data(), 4);
+  scratchFloat_.resize(n * 4);
+  gl_.glReadBuffer(GL_COLOR_ATTACHMENT1);
+  gl_.glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, scratchFloat_.data());
+  flipInto(scratchFloat_.data(), out.normals.data(), 4);
+  for (size_t i = 0; i < n; ++i) {
+    out.distanceToCamera[i] = out.normals[4 * i + 3];
+    out.normals[4 * i + 3] = 0.0f;
+  }
+  gl_.glReadBuffer(GL_COLOR_ATTACHMENT2);
+  gl_.glReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, scratchFloat_.data());
+  flipInto(scratchFloat_.data(), out.distanceToImagePlane.data(), 1);
+  gl_.glReadBuffer(GL_COLOR_ATTACHMENT3);
+  gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, reinterpret_cast<uint32_t*>(scratchFloat_.data()));
+  flipInto(reinterpret_cast<const uint32_t*>(scratchFloat_.data()), out.instanceIds.data(), 1);
+}
+
+void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out) {
+  const int w = settings_.width, h = settings_.height;
+  if (cameraIndex >= list.cameras.size()) throw RunError("renderer: no camera to render");
+  if (out.width != w || out.height != h || !colorTexture_) {
+    out.resize(w, h);
+    unsigned old[] = {colorTexture_, normalTexture_, planeTexture_, idTexture_, depthTexture_};
+    gl_.glDeleteTextures(5, old);
+    colorTexture_ = makeTexture(gl_, GL_RGBA8, w, h, GL_RGBA, GL_UNSIGNED_BYTE);
+    normalTexture_ = makeTexture(gl_, GL_RGBA32F, w, h, GL_RGBA, GL_FLOAT);
+    planeTexture_ = makeTexture(gl_, GL_R32F, w, h, GL_RED, GL_FLOAT);
+    idTexture_ = makeTexture(gl_, GL_R32UI, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT);
+    depthTexture_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, w, h, GL_DEPTH_COMPONENT, GL_FLOAT);
+    gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colorTexture_, 0);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normalTexture_, 0);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, planeTexture_, 0);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT3, GL_TEXTURE_2D, idTexture_, 0);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depthTexture_, 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    gl_.glDrawBuffers(4, buffers);
+    if (gl_.glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RunError("renderer: the framebuffer for " + std::to_string(w) + " x " + std::to_string(h) +
+                     " is incomplete (out of memory?)");
+  }
+  // The first distant light casts shadows.
+  int shadowLight = -1;
+  for (size_t i = 0; i < list.lights.size() && shadowLight < 0; ++i)
+    if (list.lights[i].kind == LightKind::Distant) shadowLight = int(i);
+  Matrix4d lightViewProjection = Matrix4d::Identity();
+  if (shadowLight >= 0) drawShadowMap(list, shadowLight, lightViewProjection);
+
+  const RenderCamera& camera = list.cameras[cameraIndex];
+  // Labels come from the un-jittered sample so they stay exact.
+  drawScene(list, camera, {0, 0}, lightViewProjection, shadowLight);
+  readBack(out, false);
+  if (settings_.subframes <= 1) return;
+  colorSum_.assign(out.rgba.begin(), out.rgba.end());
+  for (int s = 1; s < settings_.subframes; ++s) {
+    Eigen::Vector2d jitter(halton(s, 2) - 0.5, halton(s, 3) - 0.5);
+    drawScene(list, camera, jitter, lightViewProjection, shadowLight);
+    readBack(out, true);
+  }
+  const uint32_t k = uint32_t(settings_.subframes);
+  for (size_t i = 0; i < out.rgba.size(); ++i) out.rgba[i] = uint8_t((colorSum_[i] + k / 2) / k);
+}
+
+}  // namespace sdg
