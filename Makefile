@@ -26,7 +26,7 @@ demo: build
 	@echo "demo: scene inspected; tree written to out/demo/inspect.txt"
 
 bench: build
-	@tools/bench.sh $(BIN)
+	@tools/bench.sh $(BUILD)
 
 asan:
 	@$(MAKE) test PRESET=asan

@@ -25,6 +25,16 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uExposureScale) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightType) X(uLightViewProjection) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowLight) X(uShadowMap) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
+
+// Uniform locations, looked up once per program instead of per draw.
+struct Renderer::Uniforms {
+#define SDG_UNIFORM_FIELD(name) int name = -1;
+  SDG_SCENE_UNIFORMS(SDG_UNIFORM_FIELD)
+#undef SDG_UNIFORM_FIELD
+  int shadowWorldFromLocal = -1, shadowLightViewProjection = -1;
+};
+
 struct Renderer::GpuMesh {
   unsigned vao = 0;
   unsigned buffers[4] = {0, 0, 0, 0};
@@ -68,9 +78,9 @@ unsigned link(const GlApi& gl, const char* vertex, const char* fragment) {
 
 Eigen::Matrix4f toFloat(const Matrix4d& m) { return m.cast<float>(); }
 
-void setMatrix(const GlApi& gl, unsigned program, const char* name, const Matrix4d& m) {
+void setMatrix(const GlApi& gl, int location, const Matrix4d& m) {
   Eigen::Matrix4f f = toFloat(m);  // Eigen is column-major, as GL expects
-  gl.glUniformMatrix4fv(gl.glGetUniformLocation(program, name), 1, GL_FALSE, f.data());
+  gl.glUniformMatrix4fv(location, 1, GL_FALSE, f.data());
 }
 
 unsigned makeTexture(const GlApi& gl, GLint internalFormat, int w, int h, GLenum format, GLenum type) {
@@ -130,6 +140,12 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
     : context_(context), gl_(context.gl()), assets_(assets), settings_(settings) {
   sceneProgram_ = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment);
   shadowProgram_ = link(gl_, shaders::kShadowVertex, shaders::kShadowFragment);
+  uniforms_ = std::make_unique<Uniforms>();
+#define SDG_UNIFORM_LOOKUP(name) uniforms_->name = gl_.glGetUniformLocation(sceneProgram_, #name);
+  SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
+#undef SDG_UNIFORM_LOOKUP
+  uniforms_->shadowWorldFromLocal = gl_.glGetUniformLocation(shadowProgram_, "uWorldFromLocal");
+  uniforms_->shadowLightViewProjection = gl_.glGetUniformLocation(shadowProgram_, "uLightViewProjection");
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   // Shadow map with hardware depth comparison (bilinear PCF).
@@ -255,10 +271,10 @@ void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& l
   gl_.glEnable(GL_POLYGON_OFFSET_FILL);
   gl_.glPolygonOffset(2.0f, 4.0f);
   gl_.glUseProgram(shadowProgram_);
-  setMatrix(gl_, shadowProgram_, "uLightViewProjection", lightViewProjection);
+  setMatrix(gl_, uniforms_->shadowLightViewProjection, lightViewProjection);
   for (const RenderItem& item : list.items) {
     const GpuMesh& m = mesh(item);
-    setMatrix(gl_, shadowProgram_, "uWorldFromLocal", item.worldFromLocal);
+    setMatrix(gl_, uniforms_->shadowWorldFromLocal, item.worldFromLocal);
     gl_.glBindVertexArray(m.vao);
     for (const MeshPart& part : m.parts)
       gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
@@ -293,20 +309,19 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glEnable(GL_DEPTH_TEST);
   gl_.glDepthFunc(GL_LESS);
 
-  const unsigned p = sceneProgram_;
-  gl_.glUseProgram(p);
+  const Uniforms& u = *uniforms_;
+  gl_.glUseProgram(sceneProgram_);
   const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
-  setMatrix(gl_, p, "uViewProjection", viewProjection);
-  setMatrix(gl_, p, "uLightViewProjection", lightViewProjection);
+  setMatrix(gl_, u.uViewProjection, viewProjection);
+  setMatrix(gl_, u.uLightViewProjection, lightViewProjection);
   const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
   const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
-  auto loc = [&](const char* name) { return gl_.glGetUniformLocation(p, name); };
-  gl_.glUniform3f(loc("uCameraPosition"), float(eye.x()), float(eye.y()), float(eye.z()));
-  gl_.glUniform3f(loc("uCameraForward"), float(forward.x()), float(forward.y()), float(forward.z()));
-  gl_.glUniform1f(loc("uMetersPerUnit"), float(list.metersPerUnit));
-  gl_.glUniform1f(loc("uExposureScale"), settings_.exposureScale);
-  gl_.glUniform3f(loc("uAmbient"), ambient.x(), ambient.y(), ambient.z());
-  gl_.glUniform1f(loc("uShadowTexel"), 1.0f / float(settings_.shadowMapSize));
+  gl_.glUniform3f(u.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
+  gl_.glUniform3f(u.uCameraForward, float(forward.x()), float(forward.y()), float(forward.z()));
+  gl_.glUniform1f(u.uMetersPerUnit, float(list.metersPerUnit));
+  gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
+  gl_.glUniform3f(u.uAmbient, ambient.x(), ambient.y(), ambient.z());
+  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(settings_.shadowMapSize));
 
   // Lights (the dome is the ambient term above).
   int types[shaders::kMaxLights] = {};
@@ -329,40 +344,40 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
     params[4 * count + 3] = l.length;
     ++count;
   }
-  gl_.glUniform1i(loc("uLightCount"), count);
-  gl_.glUniform1iv(loc("uLightType"), shaders::kMaxLights, types);
-  gl_.glUniform3fv(loc("uLightRadiance"), shaders::kMaxLights, radiance);
-  gl_.glUniform3fv(loc("uLightPosition"), shaders::kMaxLights, position);
-  gl_.glUniform3fv(loc("uLightDirection"), shaders::kMaxLights, direction);
-  gl_.glUniform4fv(loc("uLightParams"), shaders::kMaxLights, params);
-  gl_.glUniform1i(loc("uShadowLight"), shadowSlot);
+  gl_.glUniform1i(u.uLightCount, count);
+  gl_.glUniform1iv(u.uLightType, shaders::kMaxLights, types);
+  gl_.glUniform3fv(u.uLightRadiance, shaders::kMaxLights, radiance);
+  gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, position);
+  gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, direction);
+  gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, params);
+  gl_.glUniform1i(u.uShadowLight, shadowSlot);
   gl_.glActiveTexture(GL_TEXTURE1);
   gl_.glBindTexture(GL_TEXTURE_2D, shadowTexture_);
-  gl_.glUniform1i(loc("uShadowMap"), 1);
-  gl_.glUniform1i(loc("uTexture"), 0);
+  gl_.glUniform1i(u.uShadowMap, 1);
+  gl_.glUniform1i(u.uTexture, 0);
   gl_.glActiveTexture(GL_TEXTURE0);
 
   for (const RenderItem& item : list.items) {
     const GpuMesh& m = mesh(item);
-    setMatrix(gl_, p, "uWorldFromLocal", item.worldFromLocal);
+    setMatrix(gl_, u.uWorldFromLocal, item.worldFromLocal);
     Matrix4d normalMatrix = Matrix4d::Identity();
     normalMatrix.block<3, 3>(0, 0) = item.worldFromLocal.block<3, 3>(0, 0).inverse().transpose();
-    setMatrix(gl_, p, "uNormalMatrix", normalMatrix);
-    gl_.glUniform1ui(loc("uInstanceId"), item.instanceId);
+    setMatrix(gl_, u.uNormalMatrix, normalMatrix);
+    gl_.glUniform1ui(u.uInstanceId, item.instanceId);
     gl_.glBindVertexArray(m.vao);
     for (const MeshPart& part : m.parts) {
       // The prim's bound material wins; else the file's; else displayColor.
       const bool useFile = !item.material.fromPrim && part.hasMaterial;
       const Vec3f base = useFile ? part.baseColor : item.material.baseColor;
       const std::string& tex = useFile ? part.texture : item.material.texture;
-      gl_.glUniform3f(loc("uBaseColor"), base.x(), base.y(), base.z());
-      gl_.glUniform1f(loc("uRoughness"), useFile ? part.roughness : item.material.roughness);
-      gl_.glUniform1f(loc("uMetallic"), useFile ? part.metallic : item.material.metallic);
-      gl_.glUniform1i(loc("uHasTexture"), tex.empty() ? 0 : 1);
+      gl_.glUniform3f(u.uBaseColor, base.x(), base.y(), base.z());
+      gl_.glUniform1f(u.uRoughness, useFile ? part.roughness : item.material.roughness);
+      gl_.glUniform1f(u.uMetallic, useFile ? part.metallic : item.material.metallic);
+      gl_.glUniform1i(u.uHasTexture, tex.empty() ? 0 : 1);
       gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath));
-      gl_.glUniform2f(loc("uTextureScale"), item.material.textureScale.x(), item.material.textureScale.y());
-      gl_.glUniform1f(loc("uTextureRotate"), item.material.textureRotate);
-      gl_.glUniform1i(loc("uProjectUvw"), item.material.projectUvw ? 1 : 0);
+      gl_.glUniform2f(u.uTextureScale, item.material.textureScale.x(), item.material.textureScale.y());
+      gl_.glUniform1f(u.uTextureRotate, item.material.textureRotate);
+      gl_.glUniform1i(u.uProjectUvw, item.material.projectUvw ? 1 : 0);
       gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
                          reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
     }

@@ -41,7 +41,7 @@ class Renderer {
 
  private:
   struct GpuMesh;
-  struct GpuTexture;
+  struct Uniforms;
   const GpuMesh& mesh(const RenderItem& item);
   unsigned texture(const std::string& path, const std::string& primPath);
   void drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& lightViewProjection);
@@ -54,6 +54,7 @@ class Renderer {
   const AssetResolver& assets_;
   RenderSettings settings_;
   unsigned sceneProgram_ = 0, shadowProgram_ = 0;
+  std::unique_ptr<Uniforms> uniforms_;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
   unsigned shadowTexture_ = 0, whiteTexture_ = 0;
