@@ -73,6 +73,8 @@ namespace sdg {
   X(PFNGLUNIFORM1FVPROC, glUniform1fv)                                                        \
   X(PFNGLUNIFORM1IVPROC, glUniform1iv)                                                        \
   X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                                            \
+  X(PFNGLUNIFORMMATRIX3FVPROC, glUniformMatrix3fv)                                            \
+  X(PFNGLDRAWARRAYSPROC, glDrawArrays)                                            \
   X(PFNGLFINISHPROC, glFinish)
 
 struct GlApi {

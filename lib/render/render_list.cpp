@@ -89,7 +89,8 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
   l.path = prim.path();
   const Matrix4d world = stage.worldMatrix(prim);
   l.position = world.block<3, 1>(0, 3);
-  l.direction = (decompose(world).rotation * -Vec3d::UnitZ()).normalized();
+  l.worldRotation = decompose(world).rotation;
+  l.direction = (l.worldRotation * -Vec3d::UnitZ()).normalized();
   const float scale = prim.getFloat("inputs:intensity") * std::exp2(prim.getFloat("inputs:exposure"));
   l.radiance = prim.value("inputs:color")->get<Vec3f>() * scale;
   switch (prim.type()) {

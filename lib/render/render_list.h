@@ -62,6 +62,7 @@ struct RenderLight {
   Vec3f radiance{1, 1, 1};  // intensity * 2^exposure * color
   Vec3d position = Vec3d::Zero();
   Vec3d direction = -Vec3d::UnitZ();  // the light's local -Z in world space
+  Matrix3d worldRotation = Matrix3d::Identity();  // orients a dome's texture
   float radius = 0.0f;  // sphere, disk, cylinder
   float width = 0.0f, height = 0.0f, length = 0.0f;
   float angle = 0.0f;   // distant: angular diameter (degrees)

@@ -25,7 +25,7 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uExposureScale) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightType) X(uLightViewProjection) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowLight) X(uShadowMap) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightShadow) X(uLightType) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowMap0) X(uShadowMap1) X(uShadowMap2) X(uShadowMap3) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
 
 // Uniform locations, looked up once per program instead of per draw.
 struct Renderer::Uniforms {
@@ -148,17 +148,9 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   uniforms_->shadowLightViewProjection = gl_.glGetUniformLocation(shadowProgram_, "uLightViewProjection");
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
-  // Shadow map with hardware depth comparison (bilinear PCF).
-  shadowTexture_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize,
-                               GL_DEPTH_COMPONENT, GL_FLOAT);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
+  gl_.glGenVertexArrays(1, &emptyVao_);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
-  gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTexture_, 0);
   GLenum none = GL_NONE;
   gl_.glDrawBuffers(1, &none);
   const uint8_t white[4] = {255, 255, 255, 255};
@@ -171,9 +163,12 @@ Renderer::~Renderer() {
     gl_.glDeleteVertexArrays(1, &m->vao);
     gl_.glDeleteBuffers(4, m->buffers);
   }
-  for (auto& [key, t] : textures_) gl_.glDeleteTextures(1, &t);
-  unsigned textures[] = {colorTexture_, normalTexture_, planeTexture_, idTexture_, depthTexture_, shadowTexture_, whiteTexture_};
-  gl_.glDeleteTextures(7, textures);
+  for (auto& [key, t] : textures_) gl_.glDeleteTextures(1, &t.id);
+  unsigned textures[] = {colorTexture_, normalTexture_, planeTexture_, idTexture_, depthTexture_, whiteTexture_};
+  gl_.glDeleteTextures(6, textures);
+  if (!shadowTextures_.empty()) gl_.glDeleteTextures(GLsizei(shadowTextures_.size()), shadowTextures_.data());
+  gl_.glDeleteVertexArrays(1, &emptyVao_);
+  gl_.glDeleteProgram(skyProgram_);
   gl_.glDeleteFramebuffers(1, &framebuffer_);
   gl_.glDeleteFramebuffers(1, &shadowFramebuffer_);
   gl_.glDeleteProgram(sceneProgram_);
@@ -207,7 +202,7 @@ const Renderer::GpuMesh& Renderer::mesh(const RenderItem& item) {
   return *meshes_.emplace(key, std::move(m)).first->second;
 }
 
-unsigned Renderer::texture(const std::string& path, const std::string& primPath) {
+const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std::string& primPath) {
   auto it = textures_.find(path);
   if (it != textures_.end()) return it->second;
   std::optional<std::string> resolved = assets_.resolve(path);
@@ -230,12 +225,11 @@ unsigned Renderer::texture(const std::string& path, const std::string& primPath)
   gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-  textures_.emplace(path, t);
-  return t;
+  int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+  return textures_.emplace(path, GpuTexture{t, levels}).first->second;
 }
 
-void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& lightViewProjection) {
-  // Fit an orthographic light frustum around everything drawn.
+Eigen::AlignedBox3d Renderer::sceneBounds(const RenderList& list) {
   Eigen::AlignedBox3d box;
   for (const RenderItem& item : list.items) {
     const Eigen::AlignedBox3f& b = mesh(item).bounds;
@@ -245,9 +239,12 @@ void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& l
     }
   }
   if (box.isEmpty()) box.extend(Vec3d::Zero());
-  const Vec3d centre = box.center();
-  const double radius = std::max(box.diagonal().norm() / 2, 1e-3);
-  const Vec3d forward = list.lights[size_t(lightIndex)].direction.normalized();
+  return box;
+}
+
+namespace {
+// A right-handed view looking along `forward` from `eye`.
+Matrix4d lookAlong(const Vec3d& eye, const Vec3d& forward) {
   Vec3d up = std::fabs(forward.z()) < 0.9 ? Vec3d::UnitZ() : Vec3d::UnitX();
   Vec3d right = forward.cross(up).normalized();
   up = right.cross(forward);
@@ -255,23 +252,63 @@ void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& l
   view.block<1, 3>(0, 0) = right.transpose();
   view.block<1, 3>(1, 0) = up.transpose();
   view.block<1, 3>(2, 0) = -forward.transpose();
-  Vec3d eye = centre - forward * (2 * radius);
   view.block<3, 1>(0, 3) = -view.block<3, 3>(0, 0) * eye;
-  Matrix4d ortho = Matrix4d::Identity();
-  ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
-  ortho(2, 2) = -2.0 / (4 * radius);
-  ortho(2, 3) = -1.0;
-  lightViewProjection = ortho * view;
+  return view;
+}
+}  // namespace
 
+void Renderer::drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t index, const Eigen::AlignedBox3d& box) {
+  const RenderLight& light = list.lights[slot.light];
+  const Vec3d centre = box.center();
+  const double radius = std::max(box.diagonal().norm() / 2, 1e-3);
+  if (light.kind == LightKind::Distant) {
+    // Orthographic frustum around everything drawn.
+    const Vec3d forward = light.direction.normalized();
+    Matrix4d ortho = Matrix4d::Identity();
+    ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
+    ortho(2, 2) = -2.0 / (4 * radius);
+    ortho(2, 3) = -1.0;
+    slot.viewProjection = ortho * lookAlong(centre - forward * (2 * radius), forward);
+  } else {
+    // A sphere light: one perspective map from the light toward the scene
+    // (straight down when the light is inside the scene's bounds), up to a
+    // 150 degree cone; points outside it are lit unshadowed.
+    const Vec3d toCentre = centre - light.position;
+    const double distance = toCentre.norm();
+    const bool inside = distance <= radius * 1.01;
+    const Vec3d forward = inside ? Vec3d(-Vec3d::UnitZ()) : Vec3d(toCentre / distance);
+    const double halfAngle = inside ? 75.0 * M_PI / 180 : std::min(std::asin(radius / distance), 75.0 * M_PI / 180);
+    const double n = std::max(0.01 * radius, 1e-3), f = distance + radius;
+    Matrix4d perspective = Matrix4d::Zero();
+    perspective(0, 0) = perspective(1, 1) = 1.0 / std::tan(halfAngle);
+    perspective(2, 2) = (f + n) / (n - f);
+    perspective(2, 3) = 2 * f * n / (n - f);
+    perspective(3, 2) = -1.0;
+    slot.viewProjection = perspective * lookAlong(light.position, forward);
+  }
+  // Shadow maps are made on first use and kept.
+  while (shadowTextures_.size() <= index) {
+    unsigned t = makeTexture(gl_, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize,
+                             GL_DEPTH_COMPONENT, GL_FLOAT);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    shadowTextures_.push_back(t);
+  }
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
+  gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTextures_[index], 0);
   gl_.glViewport(0, 0, settings_.shadowMapSize, settings_.shadowMapSize);
   const float one = 1.0f;
   gl_.glClearBufferfv(GL_DEPTH, 0, &one);
   gl_.glEnable(GL_DEPTH_TEST);
+  gl_.glDepthFunc(GL_LESS);
   gl_.glEnable(GL_POLYGON_OFFSET_FILL);
   gl_.glPolygonOffset(2.0f, 4.0f);
   gl_.glUseProgram(shadowProgram_);
-  setMatrix(gl_, uniforms_->shadowLightViewProjection, lightViewProjection);
+  setMatrix(gl_, uniforms_->shadowLightViewProjection, slot.viewProjection);
   for (const RenderItem& item : list.items) {
     const GpuMesh& m = mesh(item);
     setMatrix(gl_, uniforms_->shadowWorldFromLocal, item.worldFromLocal);
@@ -283,14 +320,18 @@ void Renderer::drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& l
   gl_.glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
-void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter,
-                         const Matrix4d& lightViewProjection, int shadowLight) {
+void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter) {
   const int w = settings_.width, h = settings_.height;
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.glViewport(0, 0, w, h);
+  // Domes: the first with a texture lights through it; others are uniform.
   Vec3f ambient = Vec3f::Zero();
-  for (const RenderLight& l : list.lights)
-    if (l.kind == LightKind::Dome) ambient += l.radiance;
+  const RenderLight* texturedDome = nullptr;
+  for (const RenderLight& l : list.lights) {
+    if (l.kind != LightKind::Dome) continue;
+    if (!texturedDome && !l.texture.empty()) texturedDome = &l;
+    else ambient += l.radiance;
+  }
   // The background shows the dome's colour through the same tone curve.
   float background[4] = {0, 0, 0, 1};
   for (int c = 0; c < 3; ++c) {
@@ -313,7 +354,6 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glUseProgram(sceneProgram_);
   const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
   setMatrix(gl_, u.uViewProjection, viewProjection);
-  setMatrix(gl_, u.uLightViewProjection, lightViewProjection);
   const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
   const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
   gl_.glUniform3f(u.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
@@ -327,11 +367,14 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   int types[shaders::kMaxLights] = {};
   float radiance[3 * shaders::kMaxLights] = {}, position[3 * shaders::kMaxLights] = {},
         direction[3 * shaders::kMaxLights] = {}, params[4 * shaders::kMaxLights] = {};
-  int count = 0, shadowSlot = -1;
+  int shadowOf[shaders::kMaxLights];
+  std::fill_n(shadowOf, shaders::kMaxLights, -1);
+  int count = 0;
   for (size_t i = 0; i < list.lights.size() && count < shaders::kMaxLights; ++i) {
     const RenderLight& l = list.lights[i];
     if (l.kind == LightKind::Dome) continue;
-    if (int(i) == shadowLight) shadowSlot = count;
+    for (size_t k = 0; k < shadowSlots_.size(); ++k)
+      if (shadowSlots_[k].light == i) shadowOf[count] = int(k);
     types[count] = lightTypeCode(l.kind);
     for (int c = 0; c < 3; ++c) {
       radiance[3 * count + c] = l.radiance[c];
@@ -350,10 +393,33 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, position);
   gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, direction);
   gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, params);
-  gl_.glUniform1i(u.uShadowLight, shadowSlot);
+  gl_.glUniform1iv(u.uLightShadow, shaders::kMaxLights, shadowOf);
+  // Texture units: 0 surface, 1 dome, 2-5 shadow maps.
+  const int shadowUnits[4] = {u.uShadowMap0, u.uShadowMap1, u.uShadowMap2, u.uShadowMap3};
+  for (int k = 0; k < 4; ++k) {
+    gl_.glActiveTexture(GLenum(GL_TEXTURE2 + k));
+    gl_.glBindTexture(GL_TEXTURE_2D, size_t(k) < shadowTextures_.size() ? shadowTextures_[size_t(k)] : 0);
+    gl_.glUniform1i(shadowUnits[k], 2 + k);
+  }
+  float shadowMatrices[16 * 4] = {};
+  for (size_t k = 0; k < shadowSlots_.size(); ++k) {
+    Eigen::Matrix4f m = shadowSlots_[k].viewProjection.cast<float>();
+    std::copy_n(m.data(), 16, shadowMatrices + 16 * k);
+  }
+  gl_.glUniformMatrix4fv(u.uShadowMatrix, 4, GL_FALSE, shadowMatrices);
   gl_.glActiveTexture(GL_TEXTURE1);
-  gl_.glBindTexture(GL_TEXTURE_2D, shadowTexture_);
-  gl_.glUniform1i(u.uShadowMap, 1);
+  gl_.glUniform1i(u.uDome, 1);
+  gl_.glUniform1i(u.uHasDome, texturedDome ? 1 : 0);
+  if (texturedDome) {
+    const GpuTexture& dome = texture(texturedDome->texture, texturedDome->path);
+    gl_.glBindTexture(GL_TEXTURE_2D, dome.id);
+    Eigen::Matrix3f domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
+    gl_.glUniformMatrix3fv(u.uDomeFromWorld, 1, GL_FALSE, domeFromWorld.data());
+    gl_.glUniform1f(u.uDomeLod, float(std::max(0, dome.levels - 3)));  // a 4 x 2 texel average
+    gl_.glUniform3f(u.uDomeScale, texturedDome->radiance.x(), texturedDome->radiance.y(), texturedDome->radiance.z());
+  } else {
+    gl_.glBindTexture(GL_TEXTURE_2D, whiteTexture_);
+  }
   gl_.glUniform1i(u.uTexture, 0);
   gl_.glActiveTexture(GL_TEXTURE0);
 
@@ -374,13 +440,29 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
       gl_.glUniform1f(u.uRoughness, useFile ? part.roughness : item.material.roughness);
       gl_.glUniform1f(u.uMetallic, useFile ? part.metallic : item.material.metallic);
       gl_.glUniform1i(u.uHasTexture, tex.empty() ? 0 : 1);
-      gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath));
+      gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath).id);
       gl_.glUniform2f(u.uTextureScale, item.material.textureScale.x(), item.material.textureScale.y());
       gl_.glUniform1f(u.uTextureRotate, item.material.textureRotate);
       gl_.glUniform1i(u.uProjectUvw, item.material.projectUvw ? 1 : 0);
       gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
                          reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
     }
+  }
+  if (texturedDome) {
+    // The sky fills what geometry left at the far plane.
+    gl_.glDepthFunc(GL_LEQUAL);
+    gl_.glUseProgram(skyProgram_);
+    auto sky = [&](const char* name) { return gl_.glGetUniformLocation(skyProgram_, name); };
+    setMatrix(gl_, sky("uWorldFromClip"), viewProjection.inverse());
+    gl_.glUniform3f(sky("uCameraPosition"), float(eye.x()), float(eye.y()), float(eye.z()));
+    Eigen::Matrix3f domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
+    gl_.glUniformMatrix3fv(sky("uDomeFromWorld"), 1, GL_FALSE, domeFromWorld.data());
+    gl_.glUniform3f(sky("uDomeScale"), texturedDome->radiance.x(), texturedDome->radiance.y(), texturedDome->radiance.z());
+    gl_.glUniform1f(sky("uExposureScale"), settings_.exposureScale);
+    gl_.glUniform1i(sky("uDome"), 1);
+    gl_.glBindVertexArray(emptyVao_);
+    gl_.glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl_.glDepthFunc(GL_LESS);
   }
   gl_.glBindVertexArray(0);
 }
@@ -444,22 +526,25 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
       throw RunError("renderer: the framebuffer for " + std::to_string(w) + " x " + std::to_string(h) +
                      " is incomplete (out of memory?)");
   }
-  // The first distant light casts shadows.
-  int shadowLight = -1;
-  for (size_t i = 0; i < list.lights.size() && shadowLight < 0; ++i)
-    if (list.lights[i].kind == LightKind::Distant) shadowLight = int(i);
-  Matrix4d lightViewProjection = Matrix4d::Identity();
-  if (shadowLight >= 0) drawShadowMap(list, shadowLight, lightViewProjection);
+  // Distant and sphere lights cast shadows, in stage order, up to the limit.
+  shadowSlots_.clear();
+  for (size_t i = 0; i < list.lights.size() && int(shadowSlots_.size()) < std::min(settings_.maxShadowedLights, 4); ++i)
+    if (list.lights[i].kind == LightKind::Distant || list.lights[i].kind == LightKind::Sphere)
+      shadowSlots_.push_back({i, Matrix4d::Identity()});
+  if (!shadowSlots_.empty()) {
+    const Eigen::AlignedBox3d bounds = sceneBounds(list);
+    for (size_t k = 0; k < shadowSlots_.size(); ++k) drawShadowMap(list, shadowSlots_[k], k, bounds);
+  }
 
   const RenderCamera& camera = list.cameras[cameraIndex];
   // Labels come from the un-jittered sample so they stay exact.
-  drawScene(list, camera, {0, 0}, lightViewProjection, shadowLight);
+  drawScene(list, camera, {0, 0});
   readBack(out, false);
   if (settings_.subframes <= 1) return;
   colorSum_.assign(out.rgba.begin(), out.rgba.end());
   for (int s = 1; s < settings_.subframes; ++s) {
     Eigen::Vector2d jitter(halton(s, 2) - 0.5, halton(s, 3) - 0.5);
-    drawScene(list, camera, jitter, lightViewProjection, shadowLight);
+    drawScene(list, camera, jitter);
     readBack(out, true);
   }
   const uint32_t k = uint32_t(settings_.subframes);

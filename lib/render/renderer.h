@@ -24,6 +24,9 @@ struct RenderSettings {
   // at a few metres give moderate to bright pools of light.
   float exposureScale = 0.002f;
   int shadowMapSize = 2048;
+  // Lights with shadow maps: every distant light and sphere light, up to this
+  // many, in stage order; others light without shadows.
+  int maxShadowedLights = 4;
 };
 
 class Renderer {
@@ -42,24 +45,34 @@ class Renderer {
  private:
   struct GpuMesh;
   struct Uniforms;
+  struct ShadowSlot {
+    size_t light = 0;
+    Matrix4d viewProjection = Matrix4d::Identity();
+  };
+  struct GpuTexture {
+    unsigned id = 0;
+    int levels = 1;
+  };
   const GpuMesh& mesh(const RenderItem& item);
-  unsigned texture(const std::string& path, const std::string& primPath);
-  void drawShadowMap(const RenderList& list, int lightIndex, Matrix4d& lightViewProjection);
-  void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter,
-                 const Matrix4d& lightViewProjection, int shadowLight);
+  const GpuTexture& texture(const std::string& path, const std::string& primPath);
+  Eigen::AlignedBox3d sceneBounds(const RenderList& list);
+  void drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t index, const Eigen::AlignedBox3d& bounds);
+  void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly);
 
   GlContext& context_;
   const GlApi& gl_;
   const AssetResolver& assets_;
   RenderSettings settings_;
-  unsigned sceneProgram_ = 0, shadowProgram_ = 0;
+  unsigned sceneProgram_ = 0, shadowProgram_ = 0, skyProgram_ = 0, emptyVao_ = 0;
   std::unique_ptr<Uniforms> uniforms_;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
-  unsigned shadowTexture_ = 0, whiteTexture_ = 0;
+  unsigned whiteTexture_ = 0;
+  std::vector<unsigned> shadowTextures_;  // one per shadow slot, made on demand
+  std::vector<ShadowSlot> shadowSlots_;    // this frame's shadowed lights
   std::unordered_map<std::string, std::unique_ptr<GpuMesh>> meshes_;
-  std::unordered_map<std::string, unsigned> textures_;
+  std::unordered_map<std::string, GpuTexture> textures_;
   std::vector<uint32_t> colorSum_;
   std::vector<uint8_t> scratchRgba_;
   std::vector<float> scratchFloat_;

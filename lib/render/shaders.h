@@ -13,17 +13,14 @@ layout(location = 2) in vec2 aUv;
 uniform mat4 uWorldFromLocal;
 uniform mat4 uNormalMatrix;
 uniform mat4 uViewProjection;
-uniform mat4 uLightViewProjection;
 out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 out vec2 vUv;
-out vec4 vShadowPosition;
 void main() {
   vec4 world = uWorldFromLocal * vec4(aPosition, 1.0);
   vWorldPosition = world.xyz;
   vWorldNormal = mat3(uNormalMatrix) * aNormal;
   vUv = aUv;
-  vShadowPosition = uLightViewProjection * world;
   gl_Position = uViewProjection * world;
 }
 )";
@@ -33,7 +30,6 @@ inline constexpr const char* kSceneFragment = R"(#version 330 core
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 in vec2 vUv;
-in vec4 vShadowPosition;
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oNormalDistance;
 layout(location = 2) out float oPlaneDistance;
@@ -59,11 +55,25 @@ uniform vec3 uLightRadiance[MAX_LIGHTS];
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightDirection[MAX_LIGHTS];
 uniform vec4 uLightParams[MAX_LIGHTS];
-uniform int uShadowLight;
-uniform sampler2DShadow uShadowMap;
+uniform int uLightShadow[MAX_LIGHTS];  // shadow slot of each light, -1 for none
+uniform mat4 uShadowMatrix[4];
+uniform sampler2DShadow uShadowMap0;
+uniform sampler2DShadow uShadowMap1;
+uniform sampler2DShadow uShadowMap2;
+uniform sampler2DShadow uShadowMap3;
 uniform float uShadowTexel;
+uniform int uHasDome;
+uniform sampler2D uDome;
+uniform mat3 uDomeFromWorld;
+uniform float uDomeLod;
+uniform vec3 uDomeScale;
 
 const float PI = 3.14159265358979;
+
+// A lat-long environment: the dome's local +Y is up (USD's convention).
+vec2 latLong(vec3 d) {
+  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+}
 
 vec2 transformUv(vec2 uv) {
   float c = cos(radians(uTextureRotate)), s = sin(radians(uTextureRotate));
@@ -83,12 +93,23 @@ vec3 albedo(vec3 n) {
   return x * w.x + y * w.y + z * w.z;
 }
 
-float shadow() {
-  vec3 p = vShadowPosition.xyz / vShadowPosition.w * 0.5 + 0.5;
+float shadowSample(int slot, vec3 p) {
+  // Sampler arrays need constant indices in GLSL 3.30.
+  if (slot == 0) return texture(uShadowMap0, p);
+  if (slot == 1) return texture(uShadowMap1, p);
+  if (slot == 2) return texture(uShadowMap2, p);
+  return texture(uShadowMap3, p);
+}
+
+// Fraction of the light that reaches this point: 3 x 3 bilinear PCF.
+float shadow(int slot) {
+  vec4 q = uShadowMatrix[slot] * vec4(vWorldPosition, 1.0);
+  if (q.w <= 0.0) return 1.0;
+  vec3 p = q.xyz / q.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
   float lit = 0.0;
   for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j) lit += texture(uShadowMap, vec3(p.xy + vec2(i, j) * uShadowTexel, p.z));
+    for (int j = -1; j <= 1; ++j) lit += shadowSample(slot, vec3(p.xy + vec2(i, j) * uShadowTexel, p.z));
   return lit / 9.0;
 }
 
@@ -112,7 +133,11 @@ void main() {
   vec3 v = normalize(uCameraPosition - vWorldPosition);
   if (dot(n, v) < 0.0) n = -n;  // back faces of double-sided geometry
   vec3 base = albedo(n);
-  vec3 radiance = base * (1.0 - uMetallic) * uAmbient;
+  // Ambient from the dome: a blurred (high mip) lat-long lookup along the
+  // normal approximates its irradiance; a dome without a texture is uniform.
+  vec3 ambient = uAmbient;
+  if (uHasDome != 0) ambient = uDomeScale * textureLod(uDome, latLong(uDomeFromWorld * n), uDomeLod).rgb;
+  vec3 radiance = base * (1.0 - uMetallic) * ambient;
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l;
     vec3 irradiance;
@@ -120,7 +145,6 @@ void main() {
     if (type == 0) {  // distant: radiance is irradiance at normal incidence
       l = -uLightDirection[i];
       irradiance = uLightRadiance[i];
-      if (i == uShadowLight) irradiance *= shadow();
     } else {
       vec3 toLight = uLightPosition[i] - vWorldPosition;
       float d2 = max(dot(toLight, toLight), 1e-8);
@@ -134,6 +158,7 @@ void main() {
       else area = 2.0 * p.x * p.w;                                                     // cylinder (projected)
       irradiance = uLightRadiance[i] * area * facing / d2;
     }
+    if (uLightShadow[i] >= 0) irradiance *= shadow(uLightShadow[i]);
     float nl = max(dot(n, l), 0.0);
     radiance += brdf(n, v, l, base) * irradiance * nl;
   }
@@ -144,6 +169,46 @@ void main() {
   oNormalDistance = vec4(n, distance * uMetersPerUnit);
   oPlaneDistance = dot(vWorldPosition - uCameraPosition, uCameraForward) * uMetersPerUnit;
   oInstanceId = uInstanceId;
+}
+)";
+
+// The dome's texture behind everything: a full-screen triangle at the far
+// plane; label outputs get the background values.
+inline constexpr const char* kSkyVertex = R"(#version 330 core
+out vec2 vNdc;
+void main() {
+  vec2 p = vec2((gl_VertexID == 1) ? 3.0 : -1.0, (gl_VertexID == 2) ? 3.0 : -1.0);
+  vNdc = p;
+  gl_Position = vec4(p, 1.0, 1.0);
+}
+)";
+
+inline constexpr const char* kSkyFragment = R"(#version 330 core
+in vec2 vNdc;
+layout(location = 0) out vec4 oColor;
+layout(location = 1) out vec4 oNormalDistance;
+layout(location = 2) out float oPlaneDistance;
+layout(location = 3) out uint oInstanceId;
+uniform mat4 uWorldFromClip;
+uniform vec3 uCameraPosition;
+uniform sampler2D uDome;
+uniform mat3 uDomeFromWorld;
+uniform vec3 uDomeScale;
+uniform float uExposureScale;
+const float PI = 3.14159265358979;
+vec2 latLong(vec3 d) {
+  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+}
+void main() {
+  vec4 far = uWorldFromClip * vec4(vNdc, 1.0, 1.0);
+  vec3 direction = normalize(far.xyz / far.w - uCameraPosition);
+  vec3 radiance = uDomeScale * texture(uDome, latLong(uDomeFromWorld * direction)).rgb;
+  vec3 mapped = 1.0 - exp(-radiance * uExposureScale);
+  vec3 srgb = mix(mapped * 12.92, 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, mapped));
+  oColor = vec4(srgb, 1.0);
+  oNormalDistance = vec4(0.0, 0.0, 0.0, 1.0 / 0.0);
+  oPlaneDistance = 1.0 / 0.0;
+  oInstanceId = 0u;
 }
 )";
 

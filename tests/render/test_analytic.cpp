@@ -163,3 +163,63 @@ prims:
   CHECK(redness(rotated.frame, 32, 16) * redness(rotated.frame, 32, 48) < 0);
   CHECK(redness(rotated.frame, 16, 32) * redness(rotated.frame, 48, 32) > 0);
 }
+
+TEST_CASE("render: a distant light's shadow falls where the light direction puts it", "[render][analytic][shadows]") {
+  RenderSettings settings;
+  settings.width = settings.height = 100;
+  auto r = test::renderYaml(R"(
+version: 1
+prims:
+  /Looks: {type: Scope}
+  /Looks/Grey: {type: Material, inputs:diffuse_color_constant: [0.5, 0.5, 0.5], inputs:reflection_roughness_constant: 1.0}
+  /Floor: {type: Plane, width: 20, length: 20, material: /Looks/Grey}
+  /Block: {type: Cube, size: 2, translate: [0, 0, 3], material: /Looks/Grey}
+  /Sun: {type: DistantLight, inputs:intensity: 1000, rotateY: 30}
+  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 100, translate: [0, 0, 10], clippingRange: [0.1, 100]}
+)",
+                            settings);
+  // The sun shines down -Z tilted 30 degrees toward -X: the block (x -1..1,
+  // z 2..4) shadows the floor for x in [-3.31, -0.15]; 10 px per unit.
+  auto red = [&](int x, int y) { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); };
+  CHECK(red(25, 50) <= 2);   // floor at x = -2.5: in shadow, no ambient light
+  CHECK(red(85, 50) > 100);  // floor at x = +3.5: lit
+  CHECK(red(5, 50) > 100);   // floor at x = -4.5: beyond the shadow
+}
+
+TEST_CASE("render: a sphere light casts a shadow too", "[render][analytic][shadows]") {
+  RenderSettings settings;
+  settings.width = settings.height = 100;
+  auto r = test::renderYaml(R"(
+version: 1
+prims:
+  /Floor: {type: Plane, width: 20, length: 20}
+  /Block: {type: Cube, size: 1, translate: [1.5, 0, 2.5]}
+  /Lamp: {type: SphereLight, inputs:intensity: 100000, inputs:radius: 0.1, translate: [3, 0, 5]}
+  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 100, translate: [0, 0, 10], clippingRange: [0.1, 100]}
+)",
+                            settings);
+  // The line from the lamp through the block's centre meets the floor at the
+  // origin; x = 6 is as far from the lamp and unshadowed.
+  auto red = [&](int x, int y) { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); };
+  CHECK(red(50, 50) <= 2);
+  CHECK(red(95, 50) > 20);
+}
+
+TEST_CASE("render: a dome light's lat-long texture shows behind the scene, +Y up", "[render][analytic][dome]") {
+  RenderSettings settings;
+  settings.width = settings.height = 64;
+  // sky.png: top half blue, bottom half green. The camera looks along -Z
+  // with +Y up, so the top of the image is the dome's upper hemisphere.
+  auto r = test::renderYaml(R"(
+version: 1
+prims:
+  /Sky: {type: DomeLight, inputs:intensity: 2000, inputs:texture:file: images/sky.png}
+  /Cam: {type: Camera, focalLength: 10}
+)",
+                            settings);
+  auto px = [&](int x, int y, int c) { return int(r.frame.rgba[(size_t(y) * 64 + size_t(x)) * 4 + size_t(c)]); };
+  CHECK(px(32, 5, 2) > px(32, 5, 1) + 50);    // top: blue
+  CHECK(px(32, 58, 1) > px(32, 58, 2) + 50);  // bottom: green
+  CHECK(r.frame.instanceIds[0] == 0);
+  CHECK(r.frame.distanceToCamera[0] == std::numeric_limits<float>::infinity());
+}
