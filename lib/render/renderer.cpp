@@ -25,7 +25,7 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightShadow) X(uLightType) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowMap0) X(uShadowMap1) X(uShadowMap2) X(uShadowMap3) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightShadow) X(uLightType) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
 
 // Uniform locations, looked up once per program instead of per draw.
 struct Renderer::Uniforms {
@@ -166,7 +166,7 @@ Renderer::~Renderer() {
   for (auto& [key, t] : textures_) gl_.glDeleteTextures(1, &t.id);
   unsigned textures[] = {colorTexture_, normalTexture_, planeTexture_, idTexture_, depthTexture_, whiteTexture_};
   gl_.glDeleteTextures(6, textures);
-  if (!shadowTextures_.empty()) gl_.glDeleteTextures(GLsizei(shadowTextures_.size()), shadowTextures_.data());
+  if (shadowAtlas_) gl_.glDeleteTextures(1, &shadowAtlas_);
   gl_.glDeleteVertexArrays(1, &emptyVao_);
   gl_.glDeleteProgram(skyProgram_);
   gl_.glDeleteFramebuffers(1, &framebuffer_);
@@ -257,19 +257,22 @@ Matrix4d lookAlong(const Vec3d& eye, const Vec3d& forward) {
 }
 }  // namespace
 
-void Renderer::drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t index, const Eigen::AlignedBox3d& box) {
-  const RenderLight& light = list.lights[slot.light];
+void Renderer::drawShadowMaps(const RenderList& list) {
+  const Eigen::AlignedBox3d box = sceneBounds(list);
   const Vec3d centre = box.center();
   const double radius = std::max(box.diagonal().norm() / 2, 1e-3);
-  if (light.kind == LightKind::Distant) {
-    // Orthographic frustum around everything drawn.
-    const Vec3d forward = light.direction.normalized();
-    Matrix4d ortho = Matrix4d::Identity();
-    ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
-    ortho(2, 2) = -2.0 / (4 * radius);
-    ortho(2, 3) = -1.0;
-    slot.viewProjection = ortho * lookAlong(centre - forward * (2 * radius), forward);
-  } else {
+  for (ShadowSlot& slot : shadowSlots_) {
+    const RenderLight& light = list.lights[slot.light];
+    if (light.kind == LightKind::Distant) {
+      // Orthographic frustum around everything drawn.
+      const Vec3d forward = light.direction.normalized();
+      Matrix4d ortho = Matrix4d::Identity();
+      ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
+      ortho(2, 2) = -2.0 / (4 * radius);
+      ortho(2, 3) = -1.0;
+      slot.viewProjection = ortho * lookAlong(centre - forward * (2 * radius), forward);
+      continue;
+    }
     // A sphere light: one perspective map from the light toward the scene
     // (straight down when the light is inside the scene's bounds), up to a
     // 150 degree cone; points outside it are lit unshadowed.
@@ -277,7 +280,8 @@ void Renderer::drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t in
     const double distance = toCentre.norm();
     const bool inside = distance <= radius * 1.01;
     const Vec3d forward = inside ? Vec3d(-Vec3d::UnitZ()) : Vec3d(toCentre / distance);
-    const double halfAngle = inside ? 75.0 * M_PI / 180 : std::min(std::asin(radius / distance), 75.0 * M_PI / 180);
+    const double limit = 75.0 * M_PI / 180;
+    const double halfAngle = inside ? limit : std::min(std::asin(radius / distance), limit);
     const double n = std::max(0.01 * radius, 1e-3), f = distance + radius;
     Matrix4d perspective = Matrix4d::Zero();
     perspective(0, 0) = perspective(1, 1) = 1.0 / std::tan(halfAngle);
@@ -286,21 +290,22 @@ void Renderer::drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t in
     perspective(3, 2) = -1.0;
     slot.viewProjection = perspective * lookAlong(light.position, forward);
   }
-  // Shadow maps are made on first use and kept.
-  while (shadowTextures_.size() <= index) {
-    unsigned t = makeTexture(gl_, GL_DEPTH_COMPONENT24, settings_.shadowMapSize, settings_.shadowMapSize,
-                             GL_DEPTH_COMPONENT, GL_FLOAT);
+  const int size = settings_.shadowMapSize;
+  if (!shadowAtlas_) {
+    shadowAtlas_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, 2 * size, 2 * size, GL_DEPTH_COMPONENT, GL_FLOAT);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    shadowTextures_.push_back(t);
+    gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowAtlas_, 0);
   }
+  // One framebuffer, one clear, a viewport per light: llvmpipe flushes on
+  // every framebuffer switch, so tiles of one atlas cost far less than maps.
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
-  gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTextures_[index], 0);
-  gl_.glViewport(0, 0, settings_.shadowMapSize, settings_.shadowMapSize);
+  gl_.glViewport(0, 0, 2 * size, 2 * size);
   const float one = 1.0f;
   gl_.glClearBufferfv(GL_DEPTH, 0, &one);
   gl_.glEnable(GL_DEPTH_TEST);
@@ -308,14 +313,17 @@ void Renderer::drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t in
   gl_.glEnable(GL_POLYGON_OFFSET_FILL);
   gl_.glPolygonOffset(2.0f, 4.0f);
   gl_.glUseProgram(shadowProgram_);
-  setMatrix(gl_, uniforms_->shadowLightViewProjection, slot.viewProjection);
-  for (const RenderItem& item : list.items) {
-    const GpuMesh& m = mesh(item);
-    setMatrix(gl_, uniforms_->shadowWorldFromLocal, item.worldFromLocal);
-    gl_.glBindVertexArray(m.vao);
-    for (const MeshPart& part : m.parts)
-      gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                         reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+  for (size_t k = 0; k < shadowSlots_.size(); ++k) {
+    gl_.glViewport(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
+    setMatrix(gl_, uniforms_->shadowLightViewProjection, shadowSlots_[k].viewProjection);
+    for (const RenderItem& item : list.items) {
+      const GpuMesh& m = mesh(item);
+      setMatrix(gl_, uniforms_->shadowWorldFromLocal, item.worldFromLocal);
+      gl_.glBindVertexArray(m.vao);
+      for (const MeshPart& part : m.parts)
+        gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+    }
   }
   gl_.glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -361,7 +369,7 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glUniform1f(u.uMetersPerUnit, float(list.metersPerUnit));
   gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
   gl_.glUniform3f(u.uAmbient, ambient.x(), ambient.y(), ambient.z());
-  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(settings_.shadowMapSize));
+  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(2 * settings_.shadowMapSize));
 
   // Lights (the dome is the ambient term above).
   int types[shaders::kMaxLights] = {};
@@ -394,13 +402,10 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, direction);
   gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, params);
   gl_.glUniform1iv(u.uLightShadow, shaders::kMaxLights, shadowOf);
-  // Texture units: 0 surface, 1 dome, 2-5 shadow maps.
-  const int shadowUnits[4] = {u.uShadowMap0, u.uShadowMap1, u.uShadowMap2, u.uShadowMap3};
-  for (int k = 0; k < 4; ++k) {
-    gl_.glActiveTexture(GLenum(GL_TEXTURE2 + k));
-    gl_.glBindTexture(GL_TEXTURE_2D, size_t(k) < shadowTextures_.size() ? shadowTextures_[size_t(k)] : 0);
-    gl_.glUniform1i(shadowUnits[k], 2 + k);
-  }
+  // Texture units: 0 surface, 1 dome, 2 the shadow atlas.
+  gl_.glActiveTexture(GL_TEXTURE2);
+  gl_.glBindTexture(GL_TEXTURE_2D, shadowAtlas_);
+  gl_.glUniform1i(u.uShadowAtlas, 2);
   float shadowMatrices[16 * 4] = {};
   for (size_t k = 0; k < shadowSlots_.size(); ++k) {
     Eigen::Matrix4f m = shadowSlots_[k].viewProjection.cast<float>();
@@ -531,10 +536,7 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
   for (size_t i = 0; i < list.lights.size() && int(shadowSlots_.size()) < std::min(settings_.maxShadowedLights, 4); ++i)
     if (list.lights[i].kind == LightKind::Distant || list.lights[i].kind == LightKind::Sphere)
       shadowSlots_.push_back({i, Matrix4d::Identity()});
-  if (!shadowSlots_.empty()) {
-    const Eigen::AlignedBox3d bounds = sceneBounds(list);
-    for (size_t k = 0; k < shadowSlots_.size(); ++k) drawShadowMap(list, shadowSlots_[k], k, bounds);
-  }
+  if (!shadowSlots_.empty()) drawShadowMaps(list);
 
   const RenderCamera& camera = list.cameras[cameraIndex];
   // Labels come from the un-jittered sample so they stay exact.

@@ -23,7 +23,7 @@ struct RenderSettings {
   // intensity 4000 maps to about 0.92 (sRGB 246); lamps of 20,000-120,000
   // at a few metres give moderate to bright pools of light.
   float exposureScale = 0.002f;
-  int shadowMapSize = 2048;
+  int shadowMapSize = 1024;  // per light; all share one atlas drawn in one pass
   // Lights with shadow maps: every distant light and sphere light, up to this
   // many, in stage order; others light without shadows.
   int maxShadowedLights = 4;
@@ -56,7 +56,7 @@ class Renderer {
   const GpuMesh& mesh(const RenderItem& item);
   const GpuTexture& texture(const std::string& path, const std::string& primPath);
   Eigen::AlignedBox3d sceneBounds(const RenderList& list);
-  void drawShadowMap(const RenderList& list, ShadowSlot& slot, size_t index, const Eigen::AlignedBox3d& bounds);
+  void drawShadowMaps(const RenderList& list);
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly);
 
@@ -69,7 +69,7 @@ class Renderer {
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
   unsigned whiteTexture_ = 0;
-  std::vector<unsigned> shadowTextures_;  // one per shadow slot, made on demand
+  unsigned shadowAtlas_ = 0;              // 2 x 2 tiles of shadowMapSize, made on first use
   std::vector<ShadowSlot> shadowSlots_;    // this frame's shadowed lights
   std::unordered_map<std::string, std::unique_ptr<GpuMesh>> meshes_;
   std::unordered_map<std::string, GpuTexture> textures_;

@@ -57,10 +57,7 @@ uniform vec3 uLightDirection[MAX_LIGHTS];
 uniform vec4 uLightParams[MAX_LIGHTS];
 uniform int uLightShadow[MAX_LIGHTS];  // shadow slot of each light, -1 for none
 uniform mat4 uShadowMatrix[4];
-uniform sampler2DShadow uShadowMap0;
-uniform sampler2DShadow uShadowMap1;
-uniform sampler2DShadow uShadowMap2;
-uniform sampler2DShadow uShadowMap3;
+uniform sampler2DShadow uShadowAtlas;  // 2 x 2 tiles, one per shadow slot
 uniform float uShadowTexel;
 uniform int uHasDome;
 uniform sampler2D uDome;
@@ -93,23 +90,19 @@ vec3 albedo(vec3 n) {
   return x * w.x + y * w.y + z * w.z;
 }
 
-float shadowSample(int slot, vec3 p) {
-  // Sampler arrays need constant indices in GLSL 3.30.
-  if (slot == 0) return texture(uShadowMap0, p);
-  if (slot == 1) return texture(uShadowMap1, p);
-  if (slot == 2) return texture(uShadowMap2, p);
-  return texture(uShadowMap3, p);
-}
-
 // Fraction of the light that reaches this point: 3 x 3 bilinear PCF.
 float shadow(int slot) {
   vec4 q = uShadowMatrix[slot] * vec4(vWorldPosition, 1.0);
   if (q.w <= 0.0) return 1.0;
   vec3 p = q.xyz / q.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  // Into the slot's tile of the atlas, keeping the PCF taps inside it.
+  vec2 tile = vec2(slot % 2, slot / 2);
+  vec2 inTile = clamp(p.xy, 2.0 * uShadowTexel, 1.0 - 2.0 * uShadowTexel);
   float lit = 0.0;
   for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j) lit += shadowSample(slot, vec3(p.xy + vec2(i, j) * uShadowTexel, p.z));
+    for (int j = -1; j <= 1; ++j)
+      lit += texture(uShadowAtlas, vec3((tile + inTile + vec2(i, j) * 2.0 * uShadowTexel) * 0.5, p.z));
   return lit / 9.0;
 }
 
