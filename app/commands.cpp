@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <regex>
 
 #include "core/diagnostics.h"
 #include "core/log.h"
@@ -28,6 +29,16 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("--asset-root", args.assetRoots, "Also search this folder for assets (after the scene's asset_roots)")
       ->type_name("DIR")
       ->allow_extra_args(false);
+}
+
+std::pair<int, int> parseResolution(const std::string& text) {
+  std::smatch m;
+  static const std::regex pattern("([0-9]{1,5})x([0-9]{1,5})");
+  if (!std::regex_match(text, m, pattern) || std::stoi(m[1]) < 1 || std::stoi(m[2]) < 1 ||
+      std::stoi(m[1]) > 16384 || std::stoi(m[2]) > 16384)
+    throw SceneError(SourceLoc{"--resolution", 0, 0},
+                     "expected WIDTHxHEIGHT with each side 1 to 16384 (e.g. 640x480), found '" + text + "'");
+  return {std::stoi(m[1]), std::stoi(m[2])};
 }
 
 namespace {

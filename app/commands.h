@@ -21,6 +21,9 @@ struct SceneArgs {
   std::vector<std::string> assetRoots;
 };
 
+// "640x480" -> (640, 480); anything else is a usage error (exit 2).
+std::pair<int, int> parseResolution(const std::string& text);
+
 // SCENE, --set, --plugin and --asset-root, shared by every scene command.
 void addSceneArgs(CLI::App& cmd, SceneArgs& args);
 

@@ -1,6 +1,6 @@
 #include <cstdio>
 #include <memory>
-#include <regex>
+
 
 #include "commands.h"
 #include "core/diagnostics.h"
@@ -18,16 +18,6 @@ struct RenderArgs {
   std::optional<int> subframes;
 };
 
-// "640x480" -> (640, 480); a bad value is a usage error (exit 2).
-std::pair<int, int> parseResolution(const std::string& text) {
-  std::smatch m;
-  static const std::regex pattern("([0-9]{1,5})x([0-9]{1,5})");
-  if (!std::regex_match(text, m, pattern) || std::stoi(m[1]) < 1 || std::stoi(m[2]) < 1 ||
-      std::stoi(m[1]) > 16384 || std::stoi(m[2]) > 16384)
-    throw SceneError(SourceLoc{"--resolution", 0, 0},
-                     "expected WIDTHxHEIGHT with each side 1 to 16384 (e.g. 640x480), found '" + text + "'");
-  return {std::stoi(m[1]), std::stoi(m[2])};
-}
 }  // namespace
 
 void addRender(CLI::App& app, int& exitCode) {

@@ -1,10 +1,12 @@
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
 #include "commands.h"
 #include "core/diagnostics.h"
 #include "core/log.h"
+#include "run/dataset_run.h"
 #include "run/timeline_run.h"
 
 namespace sdg::cli {
@@ -16,6 +18,11 @@ struct RunArgs {
   std::optional<int64_t> seed;
   bool noRender = false;
   std::string record;
+  std::string out;
+  bool overwrite = false;
+  unsigned threads = 0;
+  std::string resolution;
+  std::optional<int> subframes;
 };
 }  // namespace
 
@@ -25,20 +32,48 @@ void addRun(CLI::App& app, int& exitCode) {
   addSceneArgs(*cmd, args->scene);
   cmd->add_option("--frames", args->frames, "Frames to capture (overrides capture.frames)")->type_name("N");
   cmd->add_option("--seed", args->seed, "Run seed (overrides capture.seed)")->type_name("S");
+  cmd->add_option("-o,--out", args->out, "Output folder (default: out/<scene name>)")->type_name("DIR");
+  cmd->add_flag("--overwrite", args->overwrite, "Write into a non-empty output folder, replacing its files");
+  cmd->add_option("--threads", args->threads, "Encoding and writing threads (default: one per core)")
+      ->check(CLI::Range(1u, 256u))
+      ->type_name("N");
+  cmd->add_option("--resolution", args->resolution, "Image size, e.g. 640x480 (overrides render.resolution)")
+      ->type_name("WxH");
+  cmd->add_option("--subframes", args->subframes, "Anti-aliasing samples (overrides render.subframes)")
+      ->check(CLI::Range(1, 64))
+      ->type_name("K");
   cmd->add_flag("--no-render", args->noRender, "Step behaviors only; write no images (use with --record)");
   cmd->add_option("--record", args->record,
                   "Write every attribute behaviors change, per frame, as JSON lines (prim, attribute, value)")
       ->type_name("FILE.jsonl");
   cmd->footer(
       "Example:\n"
+      "  sdgbehave run scenes/warehouse.yaml --frames 6 --seed 10 --out out/warehouse\n"
       "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --seed 10 --no-render --record changes.jsonl");
   cmd->callback([args, &exitCode] {
-    if (!args->noRender)
-      throw SceneError(SourceLoc{"run", 0, 0},
-                       "rendering is not available in this build yet; run with --no-render (and --record FILE) "
-                       "to step the behaviors");
     LoadedScene loaded = loadSceneForRun(SceneRequest{args->scene.scene, args->scene.overrides,
                                                       args->scene.plugins, args->scene.assetRoots});
+    if (!args->noRender) {
+      DatasetRunOptions options;
+      options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
+      options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));
+      options.outDir = args->out.empty() ? "out/" + std::filesystem::path(args->scene.scene).stem().string() : args->out;
+      options.overwrite = args->overwrite;
+      options.threads = args->threads;
+      options.recordPath = args->record;
+      options.subframes = args->subframes;
+      if (!args->resolution.empty()) {
+        auto [w, h] = parseResolution(args->resolution);
+        options.width = w;
+        options.height = h;
+      }
+      DatasetRunResult result = runDataset(loaded, options);
+      log::info(args->scene.scene + ": " + std::to_string(result.frames) + " frames, " + std::to_string(result.files) +
+                " files in " + options.outDir + " (" + std::to_string(result.seconds).substr(0, 5) + " s, " +
+                result.renderer + ")");
+      exitCode = kExitOk;
+      return;
+    }
     TimelineRunOptions options;
     options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
     options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));

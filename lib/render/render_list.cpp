@@ -138,6 +138,8 @@ RenderCamera cameraOf(const Stage& stage, const Prim& prim) {
   c.nearClip = clip.x();
   c.farClip = clip.y();
   c.orthographic = prim.getString("projection") == "orthographic";
+  c.focusDistance = prim.getFloat("focusDistance");
+  c.fStop = prim.getFloat("fStop");
   return c;
 }
 

@@ -22,6 +22,8 @@ struct RenderCamera {
   float nearClip = 1.0f;
   float farClip = 1e6f;
   bool orthographic = false;
+  float focusDistance = 0.0f;
+  float fStop = 0.0f;
 };
 
 // What geometry to draw: a procedural shape or an asset file.

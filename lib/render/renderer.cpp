@@ -149,6 +149,8 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
+  maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment);
+  gl_.glGenFramebuffers(1, &maskFramebuffer_);
   gl_.glGenVertexArrays(1, &emptyVao_);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
   GLenum none = GL_NONE;
@@ -169,6 +171,10 @@ Renderer::~Renderer() {
   if (shadowAtlas_) gl_.glDeleteTextures(1, &shadowAtlas_);
   gl_.glDeleteVertexArrays(1, &emptyVao_);
   gl_.glDeleteProgram(skyProgram_);
+  gl_.glDeleteProgram(maskProgram_);
+  unsigned maskTextures[] = {maskTexture_, maskDepth_};
+  gl_.glDeleteTextures(2, maskTextures);
+  gl_.glDeleteFramebuffers(1, &maskFramebuffer_);
   gl_.glDeleteFramebuffers(1, &framebuffer_);
   gl_.glDeleteFramebuffers(1, &shadowFramebuffer_);
   gl_.glDeleteProgram(sceneProgram_);
@@ -553,4 +559,77 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
   for (size_t i = 0; i < out.rgba.size(); ++i) out.rgba[i] = uint8_t((colorSum_[i] + k / 2) / k);
 }
 
+}  // namespace sdg
+
+namespace sdg {
+
+void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
+                              std::vector<Coverage>& out) {
+  const int w = settings_.width, h = settings_.height;
+  out.assign(groups.size(), Coverage{});
+  if (groups.empty()) return;
+  if (maskWidth_ != w || maskHeight_ != h) {
+    unsigned old[] = {maskTexture_, maskDepth_};
+    gl_.glDeleteTextures(2, old);
+    maskTexture_ = makeTexture(gl_, GL_R32UI, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT);
+    maskDepth_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, w, h, GL_DEPTH_COMPONENT, GL_FLOAT);
+    gl_.glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer_);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, maskTexture_, 0);
+    gl_.glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, maskDepth_, 0);
+    const GLenum buffer = GL_COLOR_ATTACHMENT0;
+    gl_.glDrawBuffers(1, &buffer);
+    maskWidth_ = w;
+    maskHeight_ = h;
+  }
+  const RenderCamera& camera = list.cameras[cameraIndex];
+  const Matrix4d viewProjection = projectionMatrix(camera, w, h) * viewMatrix(camera);
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer_);
+  gl_.glViewport(0, 0, w, h);
+  gl_.glEnable(GL_DEPTH_TEST);
+  gl_.glDepthFunc(GL_LESS);
+  gl_.glUseProgram(maskProgram_);
+  const int worldFromLocal = gl_.glGetUniformLocation(maskProgram_, "uWorldFromLocal");
+  setMatrix(gl_, gl_.glGetUniformLocation(maskProgram_, "uLightViewProjection"), viewProjection);
+  maskPixels_.resize(size_t(w) * size_t(h));
+  gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl_.glReadBuffer(GL_COLOR_ATTACHMENT0);
+  const unsigned zero[4] = {0, 0, 0, 0};
+  const float one = 1.0f;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    gl_.glClearBufferuiv(GL_COLOR, 0, zero);
+    gl_.glClearBufferfv(GL_DEPTH, 0, &one);
+    for (size_t index : groups[g]) {
+      const RenderItem& item = list.items[index];
+      const GpuMesh& m = mesh(item);
+      setMatrix(gl_, worldFromLocal, item.worldFromLocal);
+      gl_.glBindVertexArray(m.vao);
+      for (const MeshPart& part : m.parts)
+        gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+    }
+    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, maskPixels_.data());
+    Coverage& c = out[g];
+    c.xMin = w;
+    c.yMin = h;
+    for (int glY = 0; glY < h; ++glY) {
+      const uint32_t* row = maskPixels_.data() + size_t(glY) * size_t(w);
+      const int y = h - 1 - glY;  // rows top to bottom
+      for (int x = 0; x < w; ++x) {
+        if (!row[x]) continue;
+        ++c.pixels;
+        c.xMin = std::min(c.xMin, x);
+        c.xMax = std::max(c.xMax, x);
+        c.yMin = std::min(c.yMin, y);
+        c.yMax = std::max(c.yMax, y);
+      }
+    }
+    if (!c.pixels) c = Coverage{};
+  }
+  gl_.glBindVertexArray(0);
+}
+
+}  // namespace sdg
+
+namespace sdg {
+Eigen::AlignedBox3f Renderer::meshBounds(const RenderItem& item) { return mesh(item).bounds; }
 }  // namespace sdg

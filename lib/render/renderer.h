@@ -42,6 +42,18 @@ class Renderer {
   void render(const RenderList& list, size_t cameraIndex, FramePasses& out);
   const RenderSettings& settings() const { return settings_; }
 
+  // For each group of items (an entity), drawn alone with the same camera:
+  // how many pixels it covers and its pixel bounds (inclusive; empty when it
+  // covers none). Exact, unlike projecting bounding boxes.
+  struct Coverage {
+    uint64_t pixels = 0;
+    int xMin = 0, yMin = 0, xMax = -1, yMax = -1;
+  };
+  void renderCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
+                      std::vector<Coverage>& out);
+  // Local bounds of an item's mesh (loads it if needed).
+  Eigen::AlignedBox3f meshBounds(const RenderItem& item);
+
  private:
   struct GpuMesh;
   struct Uniforms;
@@ -64,7 +76,10 @@ class Renderer {
   const GlApi& gl_;
   const AssetResolver& assets_;
   RenderSettings settings_;
-  unsigned sceneProgram_ = 0, shadowProgram_ = 0, skyProgram_ = 0, emptyVao_ = 0;
+  unsigned sceneProgram_ = 0, shadowProgram_ = 0, skyProgram_ = 0, maskProgram_ = 0, emptyVao_ = 0;
+  unsigned maskFramebuffer_ = 0, maskTexture_ = 0, maskDepth_ = 0;
+  int maskWidth_ = 0, maskHeight_ = 0;
+  std::vector<uint32_t> maskPixels_;
   std::unique_ptr<Uniforms> uniforms_;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;

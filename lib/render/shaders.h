@@ -216,4 +216,10 @@ inline constexpr const char* kShadowFragment = R"(#version 330 core
 void main() {}
 )";
 
+// One entity alone, for its unoccluded extent (loose boxes, occlusion).
+inline constexpr const char* kMaskFragment = R"(#version 330 core
+layout(location = 0) out uint oMask;
+void main() { oMask = 1u; }
+)";
+
 }  // namespace sdg::shaders

@@ -1,0 +1,163 @@
+#include "run/dataset_run.h"
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <thread>
+
+#include "behavior/runtime.h"
+#include "core/diagnostics.h"
+#include "core/file_io.h"
+#include "core/log.h"
+#include "render/renderer.h"
+#include "run/preroll.h"
+#include "run/record.h"
+#include "stage/path.h"
+#include "writers/basic_writer.h"
+#include "writers/write_pool.h"
+
+namespace sdg {
+namespace fs = std::filesystem;
+
+namespace {
+
+void prepareOutputFolder(const std::string& dir, bool overwrite) {
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) throw SceneError(SourceLoc{"--out", 0, 0}, dir + " exists and is not a folder");
+    if (!overwrite && !fs::is_empty(dir, ec))
+      throw SceneError(SourceLoc{"--out", 0, 0},
+                       dir + " is not empty; choose another folder or pass --overwrite to replace its files");
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw RunError("cannot create the output folder " + dir + ": " + ec.message());
+}
+
+void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
+  for (const OutputFile& file : files) {
+    fs::path path = fs::path(dir) / file.path;
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
+    writeFileAtomic(path.string(), file.bytes);
+  }
+}
+
+}  // namespace
+
+DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  Scene& scene = loaded.scene;
+  const SourceLoc sceneLoc{scene.sourcePath, 0, 0};
+  const WriterConfig* writerConfig = nullptr;
+  for (const WriterConfig& w : scene.writers) {
+    if (w.type == "BasicWriter") writerConfig = &w;
+    else throw SceneError(w.loc, w.type + " is not implemented yet; use BasicWriter");
+  }
+  if (!writerConfig)
+    throw SceneError(sceneLoc, "the scene has no writer; add e.g. `writer: {type: BasicWriter, rgb: true}`");
+
+  // Render products: capture.cameras, or every camera of the stage.
+  RenderList initialList = buildRenderList(scene.stage);
+  std::vector<std::string> cameraPaths = scene.capture.get("cameras").get<std::vector<std::string>>();
+  if (cameraPaths.empty())
+    for (const RenderCamera& c : initialList.cameras) cameraPaths.push_back(c.path);
+  if (cameraPaths.empty()) throw SceneError(sceneLoc, "the scene has no Camera prim to render from");
+  std::vector<std::string> productNames;
+  std::set<std::string> seen;
+  for (const std::string& p : cameraPaths) {
+    std::string name(path::name(p));
+    if (!seen.insert(name).second)
+      throw SceneError(sceneLoc, "two cameras are named " + name + "; render products are named after the camera");
+    productNames.push_back(name);
+  }
+
+  prepareOutputFolder(options.outDir, options.overwrite);
+  BasicWriter writer(writerConfig->options, productNames, options.seed);
+  writeFiles(options.outDir, writer.metadataFiles());
+
+  RenderSettings settings;
+  const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
+  settings.width = options.width.value_or(resolution.x());
+  settings.height = options.height.value_or(resolution.y());
+  settings.subframes = options.subframes.value_or(int(scene.render.getUInt("subframes")));
+  std::unique_ptr<GlContext> context = createOsMesaContext();
+  Renderer renderer(*context, loaded.assets, settings);
+
+  BehaviorContext behaviorContext;
+  behaviorContext.assets = &loaded.assets;
+  behaviorContext.runSeed = options.seed;
+  BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
+  runtime.init();
+  runPreroll(scene.events, runtime);
+  std::unique_ptr<ChangeRecorder> recorder;
+  if (!options.recordPath.empty()) recorder = std::make_unique<ChangeRecorder>(options.recordPath, scene.stage);
+
+  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  WritePool pool(threads, 2 * size_t(threads));
+  const auto& semanticTypes = writerConfig->options.get("semantic_types").get<std::vector<std::string>>();
+  DatasetRunResult result;
+  result.renderer = context->rendererName();
+  std::atomic<uint64_t> files{0};
+
+  runtime.play();
+  for (uint64_t frame = 0; frame < options.frames; ++frame) {
+    runtime.update();
+    if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
+    RenderList list = buildRenderList(scene.stage);
+    FrameSemantics semantics = computeSemantics(scene.stage, list, semanticTypes);
+    std::vector<Eigen::AlignedBox3f> itemBounds;
+    itemBounds.reserve(list.items.size());
+    for (const RenderItem& item : list.items) itemBounds.push_back(renderer.meshBounds(item));
+    std::vector<std::vector<size_t>> groups;
+    for (const SemanticEntity& e : semantics.entities) groups.push_back(e.items);
+
+    for (size_t product = 0; product < cameraPaths.size(); ++product) {
+      size_t cameraIndex = list.cameras.size();
+      for (size_t c = 0; c < list.cameras.size(); ++c)
+        if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
+      if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
+      auto job = std::make_shared<ProductFrame>();
+      job->frame = frame;
+      job->product = product;
+      job->camera = list.cameras[cameraIndex];
+      job->metersPerUnit = list.metersPerUnit;
+      renderer.render(list, cameraIndex, job->passes);
+      std::vector<Renderer::Coverage> coverage;
+      if (writer.needsCoverage()) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+      std::vector<EntityCoverage> entityCoverage;
+      for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+      annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
+               job->annotations);
+      for (const SemanticEntity& e : semantics.entities) {
+        job->entityPaths.push_back(e.primPath);
+        job->entityLabels.push_back(e.labels);
+      }
+      job->semanticLabels = semantics.semanticLabels;
+      job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
+      for (const RenderItem& item : list.items)
+        if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+      const std::string outDir = options.outDir;
+      pool.submit([job, &writer, outDir, &files] {
+        std::vector<OutputFile> encoded = writer.encode(*job);
+        writeFiles(outDir, encoded);
+        files += encoded.size();
+      });
+    }
+    log::debug("frame " + std::to_string(frame) + " rendered");
+    ++result.frames;
+  }
+  runtime.stop();
+  if (recorder) {
+    recorder->recordStop(scene.stage);
+    recorder->close();
+  }
+  runtime.destroy();
+  pool.finish();
+  result.files = files + 1;  // metadata.txt
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace sdg

@@ -1,0 +1,32 @@
+#pragma once
+// A run with pixels: pre-roll, play, and per frame one update, a render of
+// every camera (render product), the annotators, and the writer's files
+// encoded and written on a background pool while the next frame renders.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "run/scene_setup.h"
+
+namespace sdg {
+
+struct DatasetRunOptions {
+  uint64_t frames = 1;
+  int64_t seed = 0;
+  std::string outDir;
+  bool overwrite = false;
+  unsigned threads = 0;  // 0 = one per core
+  std::optional<int> width, height, subframes;
+  std::string recordPath;
+};
+
+struct DatasetRunResult {
+  uint64_t frames = 0;
+  uint64_t files = 0;
+  std::string renderer;
+  double seconds = 0;
+};
+
+DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options);
+
+}  // namespace sdg

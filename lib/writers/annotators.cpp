@@ -1,0 +1,148 @@
+#include "writers/annotators.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+
+#include "core/text.h"
+#include "render/camera_math.h"
+
+namespace sdg {
+
+void annotate(const AnnotatorInputs& in, FrameAnnotations& out) {
+  const FramePasses& f = in.frame;
+  const size_t n = f.pixelCount();
+  const auto& entities = in.semantics.entities;
+  out.semanticIds.resize(n);
+  out.instanceIds.resize(n);
+  out.visiblePixels.assign(entities.size(), 0);
+  std::vector<std::array<int, 4>> bounds(entities.size(), {f.width, f.height, -1, -1});
+  const auto& ofRender = in.semantics.entityOfRenderId;
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t renderId = f.instanceIds[i];
+    if (renderId == 0) {
+      out.semanticIds[i] = kBackgroundId;
+      out.instanceIds[i] = kBackgroundId;
+      continue;
+    }
+    const uint32_t e = renderId < ofRender.size() ? ofRender[renderId] : 0;
+    if (e == 0) {
+      out.semanticIds[i] = kUnlabelledId;
+      out.instanceIds[i] = kUnlabelledId;
+      continue;
+    }
+    const SemanticEntity& entity = entities[e - 1];
+    out.semanticIds[i] = entity.semanticId;
+    out.instanceIds[i] = entity.instanceId;
+    ++out.visiblePixels[e - 1];
+    auto& b = bounds[e - 1];
+    const int x = int(i % size_t(f.width)), y = int(i / size_t(f.width));
+    b[0] = std::min(b[0], x);
+    b[1] = std::min(b[1], y);
+    b[2] = std::max(b[2], x);
+    b[3] = std::max(b[3], y);
+  }
+  // Occlusion: the fraction of the entity's unoccluded pixels that are hidden.
+  out.occlusion.assign(entities.size(), 0.0f);
+  for (size_t e = 0; e < entities.size() && e < in.coverage.size(); ++e)
+    if (in.coverage[e].pixels)
+      out.occlusion[e] = float(1.0 - double(out.visiblePixels[e]) / double(in.coverage[e].pixels));
+  out.tight.clear();
+  out.loose.clear();
+  for (size_t e = 0; e < entities.size(); ++e) {
+    if (out.visiblePixels[e]) {  // fully occluded entities have no tight box
+      const auto& b = bounds[e];
+      out.tight.push_back({entities[e].semanticId, b[0], b[1], b[2], b[3], out.occlusion[e], e});
+    }
+    if (e < in.coverage.size() && in.coverage[e].pixels) {
+      const EntityCoverage& c = in.coverage[e];
+      out.loose.push_back({entities[e].semanticId, c.xMin, c.yMin, c.xMax, c.yMax, out.occlusion[e], e});
+    }
+  }
+  // 3D boxes: local extents in the entity root's frame; entities whose box
+  // reaches into the view frustum.
+  out.boxes3d.clear();
+  const RenderCamera& camera = in.list.cameras[in.camera];
+  for (size_t e = 0; e < entities.size(); ++e) {
+    const Prim* root = in.stage.find(entities[e].primPath);
+    if (!root) continue;
+    const Matrix4d worldFromRoot = in.stage.worldMatrix(*root);
+    const Matrix4d rootFromWorld = worldFromRoot.inverse();
+    Eigen::AlignedBox3d local;
+    for (size_t item : entities[e].items) {
+      const Eigen::AlignedBox3f& b = in.itemBounds[item];
+      for (int c = 0; c < 8; ++c) {
+        Vec3d corner = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
+        Vec3d world = (in.list.items[item].worldFromLocal * corner.homogeneous()).head<3>();
+        local.extend((rootFromWorld * world.homogeneous()).head<3>());
+      }
+    }
+    bool inView = false;
+    for (int c = 0; c < 8 && !inView; ++c) {
+      Vec3d world = (worldFromRoot * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).homogeneous()).head<3>();
+      Vec3d p = projectToPixel(camera, f.width, f.height, world);
+      inView = p.z() > 0 && p.x() >= 0 && p.x() <= f.width && p.y() >= 0 && p.y() <= f.height;
+    }
+    if (!inView && !out.visiblePixels[e]) continue;
+    Box3D box;
+    box.semanticId = entities[e].semanticId;
+    for (int a = 0; a < 3; ++a) {
+      box.extentMin[a] = float(local.min()[a]);
+      box.extentMax[a] = float(local.max()[a]);
+    }
+    // Row-vector layout: the transpose of our column-vector matrix.
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) box.transform[r * 4 + c] = float(worldFromRoot(c, r));
+    box.occlusionRatio = out.occlusion[e];
+    box.entity = e;
+    out.boxes3d.push_back(box);
+  }
+}
+
+namespace {
+// Camera attributes are 32-bit floats: write their shortest decimal form
+// (24.0, 20.955), not the float's exact binary expansion.
+double decimal(float f) { return std::strtod(text::formatFloat(f).c_str(), nullptr); }
+}  // namespace
+
+nlohmann::ordered_json cameraParams(const RenderCamera& camera, int width, int height, double metersPerUnit) {
+  using Json = nlohmann::ordered_json;
+  // Replicator's projection: reverse-Z with an infinite far plane
+  // (NDC z = near / -z_cam), in the row-vector layout.
+  Matrix4d p = projectionMatrix(camera, width, height);
+  p(2, 2) = 0.0;
+  p(2, 3) = camera.nearClip;
+  p(3, 2) = -1.0;
+  p(3, 3) = 0.0;
+  const Matrix4d view = viewMatrix(camera);
+  auto flat = [](const Matrix4d& m) {
+    Json a = Json::array();
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) a.push_back(m(c, r));  // transpose: row-vector layout
+    return a;
+  };
+  const double aspect = double(width) / double(height);
+  Json j;
+  j["cameraAperture"] = Json::array({decimal(camera.horizontalAperture), decimal(camera.horizontalAperture) / aspect});
+  j["cameraApertureOffset"] = Json::array({decimal(camera.horizontalApertureOffset), decimal(camera.verticalApertureOffset)});
+  j["cameraFisheyeLensP"] = Json::array();
+  j["cameraFisheyeLensS"] = Json::array();
+  j["cameraFisheyeMaxFOV"] = 0.0;
+  j["cameraFisheyeNominalHeight"] = 0;
+  j["cameraFisheyeNominalWidth"] = 0;
+  j["cameraFisheyeOpticalCentre"] = Json::array({0.0, 0.0});
+  j["cameraFisheyePolynomial"] = Json::array({0.0, 0.0, 0.0, 0.0, 0.0});
+  j["cameraFocalLength"] = decimal(camera.focalLength);
+  j["cameraFocusDistance"] = decimal(camera.focusDistance);
+  j["cameraFStop"] = decimal(camera.fStop);
+  j["cameraModel"] = camera.orthographic ? "orthographic" : "pinhole";
+  j["cameraNearFar"] = Json::array({decimal(camera.nearClip), decimal(camera.farClip)});
+  j["cameraProjection"] = flat(p);
+  j["cameraViewTransform"] = flat(view);
+  j["metersPerSceneUnit"] = metersPerUnit;
+  j["renderProductResolution"] = Json::array({width, height});
+  return j;
+}
+
+}  // namespace sdg
