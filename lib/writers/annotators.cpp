@@ -111,10 +111,12 @@ nlohmann::ordered_json cameraParams(const RenderCamera& camera, int width, int h
   // Replicator's projection: reverse-Z with an infinite far plane
   // (NDC z = near / -z_cam), in the row-vector layout.
   Matrix4d p = projectionMatrix(camera, width, height);
-  p(2, 2) = 0.0;
-  p(2, 3) = camera.nearClip;
-  p(3, 2) = -1.0;
-  p(3, 3) = 0.0;
+  if (!camera.orthographic) {  // orthographic cameras keep the GL projection
+    p(2, 2) = 0.0;
+    p(2, 3) = camera.nearClip;
+    p(3, 2) = -1.0;
+    p(3, 3) = 0.0;
+  }
   const Matrix4d view = viewMatrix(camera);
   auto flat = [](const Matrix4d& m) {
     Json a = Json::array();
