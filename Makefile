@@ -21,9 +21,8 @@ test: build
 
 demo: build
 	@$(BIN) validate scenes/warehouse.yaml
-	@$(BIN) inspect scenes/warehouse.yaml
-	@mkdir -p out/demo && $(BIN) inspect scenes/warehouse.yaml > out/demo/inspect.txt
-	@echo "demo: scene inspected; tree written to out/demo/inspect.txt"
+	@$(BIN) run scenes/warehouse.yaml --frames 6 --seed 10 --out out/demo --overwrite
+	@echo "demo: dataset written to out/demo"
 
 bench: build
 	@tools/bench.sh $(BUILD)
