@@ -77,11 +77,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   BasicWriter writer(writerConfig->options, productNames, options.seed);
   writeFiles(options.outDir, writer.metadataFiles());
 
-  RenderSettings settings;
-  const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
-  settings.width = options.width.value_or(resolution.x());
-  settings.height = options.height.value_or(resolution.y());
-  settings.subframes = options.subframes.value_or(int(scene.render.getUInt("subframes")));
+  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
   std::unique_ptr<GlContext> context = createOsMesaContext();
   Renderer renderer(*context, loaded.assets, settings);
 

@@ -29,11 +29,7 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
       throw SceneError(SourceLoc{"--camera", 0, 0}, text::quote(wanted) + " is not a Camera of the scene; cameras: " +
                                                         text::join(names, ", ") + text::didYouMean(wanted, names));
   }
-  RenderSettings settings;
-  const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
-  settings.width = options.width.value_or(resolution.x());
-  settings.height = options.height.value_or(resolution.y());
-  settings.subframes = options.subframes.value_or(int(scene.render.getUInt("subframes")));
+  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
   std::unique_ptr<GlContext> context = createOsMesaContext();
   Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;

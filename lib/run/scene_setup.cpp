@@ -14,6 +14,16 @@ BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins) {
   return registry;
 }
 
+RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
+                                 std::optional<int> subframes) {
+  RenderSettings settings;
+  const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
+  settings.width = width.value_or(resolution.x());
+  settings.height = height.value_or(resolution.y());
+  settings.subframes = subframes.value_or(int(scene.render.getUInt("subframes")));
+  return settings;
+}
+
 LoadedScene loadSceneForRun(const SceneRequest& request) {
   SceneDocument doc = readSceneDocument(request.scenePath);
   BehaviorRegistry registry = registryWithPlugins(request.plugins);

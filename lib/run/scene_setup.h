@@ -5,7 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "assets/asset_resolver.h"
+#include "render/renderer.h"
 #include "behavior/registry.h"
 #include "scene_io/scene.h"
 
@@ -23,6 +26,10 @@ struct LoadedScene {
   Scene scene;
   AssetResolver assets;
 };
+
+// The scene's render settings with command-line overrides applied.
+RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
+                                 std::optional<int> subframes);
 
 // Throws SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
