@@ -15,6 +15,7 @@
 #include "run/record.h"
 #include "stage/path.h"
 #include "writers/basic_writer.h"
+#include "writers/coco_writer.h"
 #include "writers/write_pool.h"
 
 namespace sdg {
@@ -51,12 +52,14 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   Scene& scene = loaded.scene;
   const SourceLoc sceneLoc{scene.sourcePath, 0, 0};
   const WriterConfig* writerConfig = nullptr;
-  for (const WriterConfig& w : scene.writers) {
-    if (w.type == "BasicWriter") writerConfig = &w;
-    else throw SceneError(w.loc, w.type + " is not implemented yet; use BasicWriter");
-  }
-  if (!writerConfig)
+  const WriterConfig* cocoConfig = nullptr;
+  for (const WriterConfig& w : scene.writers) (w.type == "BasicWriter" ? writerConfig : cocoConfig) = &w;
+  if (!writerConfig && !cocoConfig)
     throw SceneError(sceneLoc, "the scene has no writer; add e.g. `writer: {type: BasicWriter, rgb: true}`");
+  // COCO alone still needs its images: they are written as BasicWriter's rgb.
+  WriterConfig imagesOnly{"BasicWriter", OptionSet(findWriterType("BasicWriter")->options), sceneLoc};
+  imagesOnly.options.set("rgb", Value::makeBool(true));
+  if (!writerConfig) writerConfig = &imagesOnly;
 
   // Render products: capture.cameras, or every camera of the stage.
   RenderList initialList = buildRenderList(scene.stage);
@@ -92,7 +95,15 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   WritePool pool(threads, 2 * size_t(threads));
-  const auto& semanticTypes = writerConfig->options.get("semantic_types").get<std::vector<std::string>>();
+  const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
+                                  ->options.get("semantic_types")
+                                  .get<std::vector<std::string>>();
+  std::unique_ptr<CocoWriter> coco;
+  if (cocoConfig) {
+    const auto& types = cocoConfig->options.get("semantic_types").get<std::vector<std::string>>();
+    coco = std::make_unique<CocoWriter>(options.outDir, cocoConfig->options.getString("file_name"),
+                                        types.empty() ? std::string("class") : types.front());
+  }
   DatasetRunResult result;
   result.renderer = context->rendererName();
   std::atomic<uint64_t> files{0};
@@ -121,7 +132,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       job->metersPerUnit = list.metersPerUnit;
       renderer.render(list, cameraIndex, job->passes);
       std::vector<Renderer::Coverage> coverage;
-      if (writer.needsCoverage()) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+      if (writer.needsCoverage() || coco) renderer.renderCoverage(list, cameraIndex, groups, coverage);
       std::vector<EntityCoverage> entityCoverage;
       for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
       annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
@@ -131,6 +142,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         job->entityLabels.push_back(e.labels);
       }
       job->semanticLabels = semantics.semanticLabels;
+      if (coco)
+        coco->addFrame(writer.rgbPath(frame, product), job->passes.width, job->passes.height, job->annotations,
+                       semantics);
       job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
       for (const RenderItem& item : list.items)
         if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
@@ -151,6 +165,10 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   }
   runtime.destroy();
   pool.finish();
+  if (coco) {
+    coco->finish();
+    ++files;
+  }
   result.files = files + 1;  // metadata.txt
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

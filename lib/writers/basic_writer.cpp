@@ -74,6 +74,10 @@ std::string BasicWriter::frameName(uint64_t frame) const {
   return n;
 }
 
+std::string BasicWriter::rgbPath(uint64_t frame, size_t product) const {
+  return prefix(product, "rgb") + "rgb_" + frameName(frame) + ".png";
+}
+
 std::vector<OutputFile> BasicWriter::metadataFiles() const {
   Json j;
   j["name"] = "BasicWriter";

@@ -44,6 +44,8 @@ class BasicWriter {
   bool needsAnnotations() const;
   std::vector<OutputFile> metadataFiles() const;
   std::vector<OutputFile> encode(const ProductFrame& frame) const;
+  // Where this writer puts a frame's rgb image (COCO's file_name).
+  std::string rgbPath(uint64_t frame, size_t product) const;
 
  private:
   std::string prefix(size_t product, const std::string& annotator) const;

@@ -141,6 +141,41 @@ def check_frame(out, x):
     check("/World/Ball" in idmap.values(), "instance id mapping names the unlabelled sphere")
 
 
+def decode_rle(counts, height, width):
+    flat = np.zeros(height * width, dtype=np.uint8)
+    position, value = 0, 0
+    for run in counts:
+        flat[position:position + run] = value
+        position += run
+        value = 1 - value
+    check(position == height * width, "RLE counts do not cover the image")
+    return flat.reshape(width, height).T  # column-major, as COCO stores it
+
+
+def check_coco(out):
+    coco = json.load(open(f"{out}/coco_instances.json"))
+    check(not glob.glob(f"{out}/*.partial"), "COCO stream files left behind")
+    ids = [a["id"] for a in coco["annotations"]]
+    check(len(ids) == len(set(ids)) and len(ids) > 0, "annotation ids are not unique")
+    check(len({i["id"] for i in coco["images"]}) == 3, "one image per frame")
+    names = {c["name"] for c in coco["categories"]}
+    check(names == {"floor", "crate", "cover"}, f"categories {names}")
+    images = {i["id"]: i["file_name"] for i in coco["images"]}
+    for a in coco["annotations"]:
+        x = images[a["image_id"]][4:8]
+        check(os.path.exists(f"{out}/{images[a['image_id']]}"), "image file named by COCO exists")
+        h, w = a["segmentation"]["size"]
+        mask = decode_rle(a["segmentation"]["counts"], h, w)
+        inst = np.asarray(Image.open(f"{out}/instance_segmentation_{x}.png")).astype(np.uint32)
+        mapping = json.load(open(f"{out}/instance_segmentation_mapping_{x}.json"))
+        expected = inst == {p: int(k) for k, p in mapping.items()}[a["prim_path"]]
+        check((mask.astype(bool) == expected).all(), f"RLE of {a['prim_path']} differs from its instance mask")
+        ys, xs = np.nonzero(expected)
+        check(a["bbox"] == [int(xs.min()), int(ys.min()), int(xs.max() - xs.min() + 1), int(ys.max() - ys.min() + 1)],
+              f"COCO bbox of {a['prim_path']}")
+        check(a["area"] == int(expected.sum()) and a["iscrowd"] == 0, "COCO area / iscrowd")
+
+
 def main():
     binary, scene = sys.argv[1:3]
     with tempfile.TemporaryDirectory() as tmp:
@@ -157,7 +192,8 @@ def main():
         check(not glob.glob(f"{tmp}/one/**/*.tmp-*", recursive=True), "temporary files left behind")
         for x in ("0000", "0001", "0002"):
             check_frame(f"{tmp}/one", x)
-        check(len(one) == 1 + 3 * 29, f"{len(one)} files")  # 29 files per frame with every annotator
+        check(len(one) == 1 + 3 * 29 + 1, f"{len(one)} files")  # 29 per frame with every annotator, + COCO
+        check_coco(f"{tmp}/one")
     if failures:
         print("\n".join(failures))
         return 1
