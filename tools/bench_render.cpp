@@ -12,6 +12,7 @@
 
 #include "assets/asset_resolver.h"
 #include "render/renderer.h"
+#include "writers/png_encoder.h"
 
 using namespace sdg;
 
@@ -109,6 +110,24 @@ int main() {
   RenderSettings settings;  // 512 x 512, one sample, all passes read back
   Renderer renderer(*context, assets, settings);
   measure("render 512x512 all passes: 4 pallets + 60 boxes + target + 3 lights", warehouseLike(), renderer, 10);
+  {
+    // PNG encode of a rendered 512 x 512 RGBA frame on one thread.
+    FramePasses frame;
+    RenderList list = buildRenderList(warehouseLike());
+    renderer.render(list, 0, frame);
+    std::vector<double> runs;
+    size_t bytes = 0;
+    for (int run = 0; run < 5; ++run) {
+      auto start = std::chrono::steady_clock::now();
+      for (int i = 0; i < 10; ++i)
+        bytes = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8).size();
+      runs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / 10);
+    }
+    std::sort(runs.begin(), runs.end());
+    std::printf("{\"name\": \"PNG encode 512x512 RGBA (zlib 1, SUB), one thread, %zu bytes\", \"unit\": "
+                "\"ms/frame\", \"median\": %.3f, \"min\": %.3f, \"max\": %.3f, \"fps\": %.1f}\n",
+                bytes, runs[2], runs.front(), runs.back(), 1000.0 / runs[2]);
+  }
   for (int count : {10, 100, 1000, 10000})
     measure("render 512x512 all passes: " + std::to_string(count) + " objects sharing a mesh", sharedMeshGrid(count),
             renderer, count >= 1000 ? 3 : 10);
