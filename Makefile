@@ -27,8 +27,11 @@ demo: build
 bench: build
 	@tools/bench.sh $(BUILD)
 
+# The suite under AddressSanitizer + UndefinedBehaviorSanitizer; Mesa's own
+# allocations are suppressed (tests/lsan.supp).
 asan:
-	@$(MAKE) test PRESET=asan
+	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test PRESET=asan
 
 clean:
 	rm -rf build out
