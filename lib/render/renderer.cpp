@@ -44,9 +44,10 @@ struct Renderer::GpuMesh {
 
 namespace {
 
-unsigned compile(const GlApi& gl, GLenum type, const char* source) {
+unsigned compile(const GlApi& gl, GLenum type, std::initializer_list<const char*> sources) {
   unsigned shader = gl.glCreateShader(type);
-  gl.glShaderSource(shader, 1, &source, nullptr);
+  std::vector<const char*> parts(sources);
+  gl.glShaderSource(shader, GLsizei(parts.size()), parts.data(), nullptr);
   gl.glCompileShader(shader);
   GLint ok = 0;
   gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -58,8 +59,12 @@ unsigned compile(const GlApi& gl, GLenum type, const char* source) {
   return shader;
 }
 
-unsigned link(const GlApi& gl, const char* vertex, const char* fragment) {
-  unsigned vs = compile(gl, GL_VERTEX_SHADER, vertex), fs = compile(gl, GL_FRAGMENT_SHADER, fragment);
+// Vertex shaders are one string; fragment shaders get the shared header and
+// common functions first.
+unsigned link(const GlApi& gl, const char* vertex, const char* fragmentBody, bool common = true) {
+  unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
+  unsigned fs = common ? compile(gl, GL_FRAGMENT_SHADER, {shaders::kFragmentHeader, shaders::kCommonFunctions, fragmentBody})
+                       : compile(gl, GL_FRAGMENT_SHADER, {fragmentBody});
   unsigned program = gl.glCreateProgram();
   gl.glAttachShader(program, vs);
   gl.glAttachShader(program, fs);
@@ -139,7 +144,7 @@ MeshData meshDataFor(const MeshKey& key, const AssetResolver& assets, const std:
 Renderer::Renderer(GlContext& context, const AssetResolver& assets, const RenderSettings& settings)
     : context_(context), gl_(context.gl()), assets_(assets), settings_(settings) {
   sceneProgram_ = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment);
-  shadowProgram_ = link(gl_, shaders::kShadowVertex, shaders::kShadowFragment);
+  shadowProgram_ = link(gl_, shaders::kShadowVertex, shaders::kShadowFragment, false);
   uniforms_ = std::make_unique<Uniforms>();
 #define SDG_UNIFORM_LOOKUP(name) uniforms_->name = gl_.glGetUniformLocation(sceneProgram_, #name);
   SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
@@ -149,7 +154,7 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
-  maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment);
+  maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment, false);
   gl_.glGenFramebuffers(1, &maskFramebuffer_);
   gl_.glGenVertexArrays(1, &emptyVao_);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);

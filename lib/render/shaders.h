@@ -6,6 +6,26 @@ namespace sdg::shaders {
 
 inline constexpr int kMaxLights = 16;
 
+// Fragment programs are compiled from several strings: this header, the
+// common functions, then their own body.
+inline constexpr const char* kFragmentHeader = "#version 330 core\n";
+
+inline constexpr const char* kCommonFunctions = R"(
+const float PI = 3.14159265358979;
+
+// A lat-long environment: the dome's local +Y is up (USD's convention).
+vec2 latLong(vec3 d) {
+  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+}
+
+// The documented tone curve, then sRGB encoding.
+vec4 displayColor(vec3 radiance, float exposureScale) {
+  vec3 mapped = 1.0 - exp(-radiance * exposureScale);
+  vec3 srgb = mix(mapped * 12.92, 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, mapped));
+  return vec4(srgb, 1.0);
+}
+)";
+
 inline constexpr const char* kSceneVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
@@ -25,7 +45,7 @@ void main() {
 }
 )";
 
-inline constexpr const char* kSceneFragment = R"(#version 330 core
+inline constexpr const char* kSceneFragment = R"(
 #define MAX_LIGHTS 16
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -65,12 +85,6 @@ uniform mat3 uDomeFromWorld;
 uniform float uDomeLod;
 uniform vec3 uDomeScale;
 
-const float PI = 3.14159265358979;
-
-// A lat-long environment: the dome's local +Y is up (USD's convention).
-vec2 latLong(vec3 d) {
-  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
-}
 
 vec2 transformUv(vec2 uv) {
   float c = cos(radians(uTextureRotate)), s = sin(radians(uTextureRotate));
@@ -155,9 +169,7 @@ void main() {
     float nl = max(dot(n, l), 0.0);
     radiance += brdf(n, v, l, base) * irradiance * nl;
   }
-  vec3 mapped = 1.0 - exp(-radiance * uExposureScale);
-  vec3 srgb = mix(mapped * 12.92, 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, mapped));
-  oColor = vec4(srgb, 1.0);
+  oColor = displayColor(radiance, uExposureScale);
   float distance = length(vWorldPosition - uCameraPosition);
   oNormalDistance = vec4(n, distance * uMetersPerUnit);
   oPlaneDistance = dot(vWorldPosition - uCameraPosition, uCameraForward) * uMetersPerUnit;
@@ -176,7 +188,7 @@ void main() {
 }
 )";
 
-inline constexpr const char* kSkyFragment = R"(#version 330 core
+inline constexpr const char* kSkyFragment = R"(
 in vec2 vNdc;
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oNormalDistance;
@@ -188,17 +200,11 @@ uniform sampler2D uDome;
 uniform mat3 uDomeFromWorld;
 uniform vec3 uDomeScale;
 uniform float uExposureScale;
-const float PI = 3.14159265358979;
-vec2 latLong(vec3 d) {
-  return vec2(0.5 + atan(d.x, -d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
-}
 void main() {
   vec4 far = uWorldFromClip * vec4(vNdc, 1.0, 1.0);
   vec3 direction = normalize(far.xyz / far.w - uCameraPosition);
   vec3 radiance = uDomeScale * texture(uDome, latLong(uDomeFromWorld * direction)).rgb;
-  vec3 mapped = 1.0 - exp(-radiance * uExposureScale);
-  vec3 srgb = mix(mapped * 12.92, 1.055 * pow(mapped, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, mapped));
-  oColor = vec4(srgb, 1.0);
+  oColor = displayColor(radiance, uExposureScale);
   oNormalDistance = vec4(0.0, 0.0, 0.0, 1.0 / 0.0);
   oPlaneDistance = 1.0 / 0.0;
   oInstanceId = 0u;
