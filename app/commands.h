@@ -21,6 +21,9 @@ struct SceneArgs {
   std::vector<std::string> assetRoots;
 };
 
+// "sdgbehave 0.1.0 (git describe)"
+std::string versionText();
+
 // "640x480" -> (640, 480); anything else is a usage error (exit 2).
 std::pair<int, int> parseResolution(const std::string& text);
 

@@ -23,19 +23,19 @@ constexpr const char* kDescription =
     "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --no-render --record changes.jsonl\n"
     "  sdgbehave schema --out schemas/scene.schema.json\n";
 
-std::string versionText() {
+}  // namespace
+
+std::string sdg::cli::versionText() {
   std::string v = "sdgbehave " SDG_VERSION;
   if (std::string(SDG_GIT_DESCRIBE).size()) v += " (" SDG_GIT_DESCRIBE ")";
   return v;
 }
 
-}  // namespace
-
 int main(int argc, char** argv) {
   using namespace sdg;
   CLI::App app(kDescription, "sdgbehave");
   app.require_subcommand(1);
-  app.set_version_flag("--version", versionText());
+  app.set_version_flag("--version", cli::versionText());
   app.footer(
       "Exit status: 0 success; 2 bad usage or an invalid scene; 1 a failure during a run.\n"
       "Run `sdgbehave COMMAND --help` for a command's options.");

@@ -1,3 +1,4 @@
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -6,7 +7,10 @@
 #include "commands.h"
 #include "core/diagnostics.h"
 #include "core/log.h"
+#include "core/file_io.h"
 #include "run/dataset_run.h"
+#include "run/progress.h"
+#include "run/run_summary.h"
 #include "run/timeline_run.h"
 
 namespace sdg::cli {
@@ -23,6 +27,7 @@ struct RunArgs {
   unsigned threads = 0;
   std::string resolution;
   std::optional<int> subframes;
+  std::string summary;
 };
 }  // namespace
 
@@ -42,6 +47,8 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->add_option("--subframes", args->subframes, "Anti-aliasing samples (overrides render.subframes)")
       ->check(CLI::Range(1, 64))
       ->type_name("K");
+  cmd->add_option("--summary", args->summary, "Also write the run summary (JSON) to this file")
+      ->type_name("FILE.json");
   cmd->add_flag("--no-render", args->noRender, "Step behaviors only; write no images (use with --record)");
   cmd->add_option("--record", args->record,
                   "Write every attribute behaviors change, per frame, as JSON lines (prim, attribute, value)")
@@ -51,8 +58,10 @@ void addRun(CLI::App& app, int& exitCode) {
       "  sdgbehave run scenes/warehouse.yaml --frames 6 --seed 10 --out out/warehouse\n"
       "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --seed 10 --no-render --record changes.jsonl");
   cmd->callback([args, &exitCode] {
+    const auto loadStart = std::chrono::steady_clock::now();
     LoadedScene loaded = loadSceneForRun(SceneRequest{args->scene.scene, args->scene.overrides,
                                                       args->scene.plugins, args->scene.assetRoots});
+    const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;
       options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
@@ -67,10 +76,20 @@ void addRun(CLI::App& app, int& exitCode) {
         options.width = w;
         options.height = h;
       }
+      options.progress = Progress::stderrIsTerminal() && log::enabled(log::Level::Info);
       DatasetRunResult result = runDataset(loaded, options);
-      log::info(args->scene.scene + ": " + std::to_string(result.frames) + " frames, " + std::to_string(result.files) +
-                " files in " + options.outDir + " (" + std::to_string(result.seconds).substr(0, 5) + " s, " +
-                result.renderer + ")");
+      std::string summary =
+          makeRunSummary(RunSummaryInputs{versionText(), args->scene.scene, &loaded.scene, &options, &result, loadSeconds})
+              .dump(2) + "\n";
+      writeFileAtomic((std::filesystem::path(options.outDir) / "run_summary.json").string(), summary);
+      if (!args->summary.empty()) writeFileAtomic(args->summary, summary);
+      char line[256];
+      std::snprintf(line, sizeof line, "%llu frames, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s)",
+                    static_cast<unsigned long long>(result.frames), static_cast<unsigned long long>(result.files + 1),
+                    options.outDir.c_str(), loadSeconds + result.seconds,
+                    result.seconds > 0 ? double(result.frames) / result.seconds : 0.0, peakRssMb(),
+                    result.backend.c_str());
+      log::info(line);
       exitCode = kExitOk;
       return;
     }

@@ -12,6 +12,7 @@
 #include "core/log.h"
 #include "render/renderer.h"
 #include "run/preroll.h"
+#include "run/progress.h"
 #include "run/record.h"
 #include "stage/path.h"
 #include "writers/basic_writer.h"
@@ -89,7 +90,12 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   behaviorContext.runSeed = options.seed;
   BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
   runtime.init();
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  DatasetRunResult result;
+  auto t0 = Clock::now();
   runPreroll(scene.events, runtime);
+  result.stages.preroll = since(t0);
   std::unique_ptr<ChangeRecorder> recorder;
   if (!options.recordPath.empty()) recorder = std::make_unique<ChangeRecorder>(options.recordPath, scene.stage);
 
@@ -104,14 +110,19 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     coco = std::make_unique<CocoWriter>(options.outDir, cocoConfig->options.getString("file_name"),
                                         types.empty() ? std::string("class") : types.front());
   }
-  DatasetRunResult result;
   result.renderer = context->rendererName();
+  result.backend = context->backend();
   std::atomic<uint64_t> files{0};
+  std::atomic<uint64_t> encodeMicros{0};
+  Progress progress(options.frames, options.progress);
 
   runtime.play();
   for (uint64_t frame = 0; frame < options.frames; ++frame) {
+    t0 = Clock::now();
     runtime.update();
+    result.stages.behaviors += since(t0);
     if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
+    t0 = Clock::now();
     RenderList list = buildRenderList(scene.stage);
     FrameSemantics semantics = computeSemantics(scene.stage, list, semanticTypes);
     std::vector<Eigen::AlignedBox3f> itemBounds;
@@ -130,9 +141,12 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       job->product = product;
       job->camera = list.cameras[cameraIndex];
       job->metersPerUnit = list.metersPerUnit;
+      auto renderStart = Clock::now();
       renderer.render(list, cameraIndex, job->passes);
       std::vector<Renderer::Coverage> coverage;
       if (writer.needsCoverage() || coco) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+      result.stages.render += since(renderStart);
+      auto annotateStart = Clock::now();
       std::vector<EntityCoverage> entityCoverage;
       for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
       annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
@@ -148,16 +162,21 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
       for (const RenderItem& item : list.items)
         if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+      result.stages.annotate += since(annotateStart);
       const std::string outDir = options.outDir;
-      pool.submit([job, &writer, outDir, &files] {
+      pool.submit([job, &writer, outDir, &files, &encodeMicros] {
+        auto start = Clock::now();
         std::vector<OutputFile> encoded = writer.encode(*job);
         writeFiles(outDir, encoded);
         files += encoded.size();
+        encodeMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
       });
     }
     log::debug("frame " + std::to_string(frame) + " rendered");
     ++result.frames;
+    progress.update(result.frames);
   }
+  progress.finish();
   runtime.stop();
   if (recorder) {
     recorder->recordStop(scene.stage);
@@ -170,6 +189,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     ++files;
   }
   result.files = files + 1;  // metadata.txt
+  result.stages.encodeWrite = double(encodeMicros) / 1e6;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -18,13 +18,22 @@ struct DatasetRunOptions {
   unsigned threads = 0;  // 0 = one per core
   std::optional<int> width, height, subframes;
   std::string recordPath;
+  bool progress = false;  // draw a progress bar on stderr
+};
+
+// Seconds spent in each stage of the run (encode+write summed over the
+// pool's threads, so it can exceed the wall time).
+struct StageTimes {
+  double preroll = 0, behaviors = 0, render = 0, annotate = 0, encodeWrite = 0;
 };
 
 struct DatasetRunResult {
   uint64_t frames = 0;
   uint64_t files = 0;
   std::string renderer;
-  double seconds = 0;
+  std::string backend;
+  double seconds = 0;  // wall time of the run (after loading)
+  StageTimes stages;
 };
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options);

@@ -1,0 +1,54 @@
+#include "run/run_summary.h"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+namespace sdg {
+
+double peakRssMb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+std::string fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  uint64_t h = 0xCBF29CE484222325ULL;
+  for (std::istreambuf_iterator<char> it(in), end; it != end; ++it) {
+    h ^= static_cast<unsigned char>(*it);
+    h *= 0x100000001B3ULL;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
+  using Json = nlohmann::ordered_json;
+  const DatasetRunResult& r = *in.result;
+  const DatasetRunOptions& o = *in.options;
+  Json j;
+  j["tool"] = "sdgbehave";
+  j["version"] = in.version;
+  j["scene"] = in.scenePath;
+  j["scene_hash"] = fileHash(in.scenePath);
+  j["seed"] = o.seed;
+  j["frames"] = r.frames;
+  j["output"] = o.outDir;
+  j["files_written"] = r.files;
+  j["renderer"] = {{"backend", r.backend}, {"gl_renderer", r.renderer}};
+  const double total = in.loadSeconds + r.seconds;
+  j["seconds"] = {{"load", in.loadSeconds},          {"preroll", r.stages.preroll},
+                  {"behaviors", r.stages.behaviors}, {"render", r.stages.render},
+                  {"annotate", r.stages.annotate},   {"encode_write_all_threads", r.stages.encodeWrite},
+                  {"total", total}};
+  j["frames_per_second"] = r.seconds > 0 ? double(r.frames) / r.seconds : 0.0;
+  j["peak_rss_mb"] = peakRssMb();
+  return j;
+}
+
+}  // namespace sdg

@@ -1,0 +1,27 @@
+#pragma once
+// run_summary.json: what a script or scheduler needs to know about a run.
+// It is the one output file whose bytes differ between runs (timings).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run/dataset_run.h"
+
+namespace sdg {
+
+struct RunSummaryInputs {
+  std::string version;
+  std::string scenePath;
+  const Scene* scene = nullptr;
+  const DatasetRunOptions* options = nullptr;
+  const DatasetRunResult* result = nullptr;
+  double loadSeconds = 0;
+};
+
+nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in);
+// Peak resident memory of this process, MB.
+double peakRssMb();
+// "fnv1a64:<16 hex digits>" of the file's bytes ("" when unreadable).
+std::string fileHash(const std::string& path);
+
+}  // namespace sdg
