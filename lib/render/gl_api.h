@@ -74,7 +74,8 @@ namespace sdg {
   X(PFNGLUNIFORM1IVPROC, glUniform1iv)                                                        \
   X(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv)                                            \
   X(PFNGLUNIFORMMATRIX3FVPROC, glUniformMatrix3fv)                                            \
-  X(PFNGLDRAWARRAYSPROC, glDrawArrays)                                            \
+  X(PFNGLDRAWARRAYSPROC, glDrawArrays)                                                        \
+  X(PFNGLLOGICOPPROC, glLogicOp)                                            \
   X(PFNGLFINISHPROC, glFinish)
 
 struct GlApi {

@@ -590,46 +590,58 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
   const Matrix4d viewProjection = projectionMatrix(camera, w, h) * viewMatrix(camera);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer_);
   gl_.glViewport(0, 0, w, h);
-  gl_.glEnable(GL_DEPTH_TEST);
-  gl_.glDepthFunc(GL_LESS);
+  // Each entity writes its own bit with OR and no depth test, so one pass
+  // (and one read-back) covers 32 entities drawn as if alone.
+  gl_.glDisable(GL_DEPTH_TEST);
+  gl_.glEnable(GL_COLOR_LOGIC_OP);
+  gl_.glLogicOp(GL_OR);
   gl_.glUseProgram(maskProgram_);
   const int worldFromLocal = gl_.glGetUniformLocation(maskProgram_, "uWorldFromLocal");
+  const int bit = gl_.glGetUniformLocation(maskProgram_, "uBit");
   setMatrix(gl_, gl_.glGetUniformLocation(maskProgram_, "uLightViewProjection"), viewProjection);
   maskPixels_.resize(size_t(w) * size_t(h));
   gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
   gl_.glReadBuffer(GL_COLOR_ATTACHMENT0);
   const unsigned zero[4] = {0, 0, 0, 0};
-  const float one = 1.0f;
-  for (size_t g = 0; g < groups.size(); ++g) {
-    gl_.glClearBufferuiv(GL_COLOR, 0, zero);
-    gl_.glClearBufferfv(GL_DEPTH, 0, &one);
-    for (size_t index : groups[g]) {
-      const RenderItem& item = list.items[index];
-      const GpuMesh& m = mesh(item);
-      setMatrix(gl_, worldFromLocal, item.worldFromLocal);
-      gl_.glBindVertexArray(m.vao);
-      for (const MeshPart& part : m.parts)
-        gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
-    }
-    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, maskPixels_.data());
-    Coverage& c = out[g];
+  for (auto& c : out) {
     c.xMin = w;
     c.yMin = h;
+  }
+  for (size_t first = 0; first < groups.size(); first += 32) {
+    const size_t last = std::min(groups.size(), first + 32);
+    gl_.glClearBufferuiv(GL_COLOR, 0, zero);
+    for (size_t g = first; g < last; ++g) {
+      gl_.glUniform1ui(bit, 1u << (g - first));
+      for (size_t index : groups[g]) {
+        const RenderItem& item = list.items[index];
+        const GpuMesh& m = mesh(item);
+        setMatrix(gl_, worldFromLocal, item.worldFromLocal);
+        gl_.glBindVertexArray(m.vao);
+        for (const MeshPart& part : m.parts)
+          gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+      }
+    }
+    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, maskPixels_.data());
     for (int glY = 0; glY < h; ++glY) {
       const uint32_t* row = maskPixels_.data() + size_t(glY) * size_t(w);
       const int y = h - 1 - glY;  // rows top to bottom
       for (int x = 0; x < w; ++x) {
-        if (!row[x]) continue;
-        ++c.pixels;
-        c.xMin = std::min(c.xMin, x);
-        c.xMax = std::max(c.xMax, x);
-        c.yMin = std::min(c.yMin, y);
-        c.yMax = std::max(c.yMax, y);
+        for (uint32_t bits = row[x]; bits; bits &= bits - 1) {
+          Coverage& c = out[first + size_t(__builtin_ctz(bits))];
+          ++c.pixels;
+          c.xMin = std::min(c.xMin, x);
+          c.xMax = std::max(c.xMax, x);
+          c.yMin = std::min(c.yMin, y);
+          c.yMax = std::max(c.yMax, y);
+        }
       }
     }
-    if (!c.pixels) c = Coverage{};
   }
+  for (auto& c : out)
+    if (!c.pixels) c = Coverage{};
+  gl_.glDisable(GL_COLOR_LOGIC_OP);
+  gl_.glEnable(GL_DEPTH_TEST);
   gl_.glBindVertexArray(0);
 }
 

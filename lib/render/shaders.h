@@ -222,10 +222,12 @@ inline constexpr const char* kShadowFragment = R"(#version 330 core
 void main() {}
 )";
 
-// One entity alone, for its unoccluded extent (loose boxes, occlusion).
+// Entities as if alone, for their unoccluded extents (loose boxes,
+// occlusion): each ORs its own bit into the mask.
 inline constexpr const char* kMaskFragment = R"(#version 330 core
 layout(location = 0) out uint oMask;
-void main() { oMask = 1u; }
+uniform uint uBit;
+void main() { oMask = uBit; }
 )";
 
 }  // namespace sdg::shaders
