@@ -157,6 +157,7 @@ RenderList buildRenderList(const Stage& stage) {
       RenderItem item;
       item.primPath = prim.path();
       item.mesh = meshKeyOf(prim);
+      item.meshId = item.mesh.id();
       item.worldFromLocal = stage.worldMatrix(prim);
       item.material = materialOf(stage, prim);
       item.instanceId = id;

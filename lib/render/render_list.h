@@ -50,6 +50,7 @@ struct RenderMaterial {
 struct RenderItem {
   std::string primPath;
   MeshKey mesh;
+  std::string meshId;  // mesh.id(), computed once when the list is built
   Matrix4d worldFromLocal = Matrix4d::Identity();
   RenderMaterial material;
   uint32_t instanceId = 0;  // 1-based, in stage order; 0 is background

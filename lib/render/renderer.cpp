@@ -187,7 +187,8 @@ Renderer::~Renderer() {
 }
 
 const Renderer::GpuMesh& Renderer::mesh(const RenderItem& item) {
-  std::string key = item.mesh.id();
+  // Lists built by hand (tests, tools) may leave meshId empty.
+  const std::string key = item.meshId.empty() ? item.mesh.id() : item.meshId;
   auto it = meshes_.find(key);
   if (it != meshes_.end()) return *it->second;
   MeshData data = meshDataFor(item.mesh, assets_, item.primPath);

@@ -35,7 +35,6 @@ FrameSemantics computeSemantics(const Stage& stage, const RenderList& list,
   out.semanticLabels = {{{"class", "BACKGROUND"}}, {{"class", "UNLABELLED"}}};
   std::unordered_map<std::string, size_t> entityByPath;
   std::map<LabelSet, uint32_t> semanticIdByLabels;
-  out.itemEntity.assign(list.items.size(), 0);
   uint32_t maxRenderId = 0;
   for (const RenderItem& item : list.items) maxRenderId = std::max(maxRenderId, item.instanceId);
   out.entityOfRenderId.assign(size_t(maxRenderId) + 1, 0);
@@ -62,7 +61,6 @@ FrameSemantics computeSemantics(const Stage& stage, const RenderList& list,
       out.entities.push_back(std::move(entity));
     }
     out.entities[it->second].items.push_back(i);
-    out.itemEntity[i] = uint32_t(it->second) + 1;
     out.entityOfRenderId[list.items[i].instanceId] = uint32_t(it->second) + 1;
   }
   return out;

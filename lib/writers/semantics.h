@@ -30,7 +30,6 @@ struct SemanticEntity {
 
 struct FrameSemantics {
   std::vector<SemanticEntity> entities;          // stage order
-  std::vector<uint32_t> itemEntity;              // per render item: entity index + 1, 0 = unlabelled
   std::vector<LabelSet> semanticLabels;          // by semantic id (0 BACKGROUND, 1 UNLABELLED)
   // Render-pass instance id (RenderItem::instanceId) -> entity index + 1; 0 = unlabelled.
   std::vector<uint32_t> entityOfRenderId;
