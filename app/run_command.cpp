@@ -28,6 +28,7 @@ struct RunArgs {
   std::string resolution;
   std::optional<int> subframes;
   std::string summary;
+  std::string saveStage;
 };
 }  // namespace
 
@@ -53,6 +54,10 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->add_option("--record", args->record,
                   "Write every attribute behaviors change, per frame, as JSON lines (prim, attribute, value)")
       ->type_name("FILE.jsonl");
+  cmd->add_option("--save-stage", args->saveStage,
+                  "After the pre-roll, write the scene with its stacks in place (and no events) to this file: "
+                  "stack once, render many times")
+      ->type_name("FILE.yaml");
   cmd->footer(
       "Example:\n"
       "  sdgbehave run scenes/warehouse.yaml --frames 6 --seed 10 --out out/warehouse\n"
@@ -70,6 +75,7 @@ void addRun(CLI::App& app, int& exitCode) {
       options.overwrite = args->overwrite;
       options.threads = args->threads;
       options.recordPath = args->record;
+      options.saveStagePath = args->saveStage;
       options.subframes = args->subframes;
       if (!args->resolution.empty()) {
         auto [w, h] = parseResolution(args->resolution);
@@ -97,6 +103,7 @@ void addRun(CLI::App& app, int& exitCode) {
     options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
     options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));
     options.recordPath = args->record;
+    options.saveStagePath = args->saveStage;
     TimelineRunResult result = runTimeline(loaded, options);
     log::info(args->scene.scene + ": " + std::to_string(result.frames) + " frames, " +
               std::to_string(result.behaviors) + " behaviors, " + std::to_string(result.updates) + " updates" +

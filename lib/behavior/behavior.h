@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "behavior/event_bus.h"
 #include "behavior/rng.h"
 #include "stage/behavior_spec.h"
@@ -17,12 +19,24 @@
 namespace sdg {
 
 class AssetResolver;
+struct PhysicsSettings;
+
+// Hooks the run layer may install. Behaviors call them and never learn who
+// listens, so data still flows one way: behaviors -> renderer / summary.
+struct RunHooks {
+  // A physics step moved prims (renderSimulation): render this state.
+  std::function<void(const Stage& stage, const std::string& owner, uint64_t step)> simulationFrame;
+  // A measurement for the run summary and the record, e.g. settle quality.
+  std::function<void(const std::string& behavior, const nlohmann::ordered_json& report)> report;
+};
 
 // What a behavior may use while the scene runs.
 struct BehaviorContext {
   Stage* stage = nullptr;
   EventBus* events = nullptr;
   const AssetResolver* assets = nullptr;
+  const PhysicsSettings* physics = nullptr;  // null: the defaults
+  RunHooks hooks;
   int64_t runSeed = 0;
   uint64_t iteration = 0;
 };

@@ -14,6 +14,7 @@ void registerBuiltinBehaviors(BehaviorRegistry& registry) {
       {lookAtBehaviorSpec, makeLookAtBehavior},
       {lightRandomizerSpec, makeLightRandomizer},
       {textureRandomizerSpec, makeTextureRandomizer},
+      {volumeStackRandomizerSpec, makeVolumeStackRandomizer},
   };
   for (const Row& row : kBuiltins) registry.add(row.spec(), row.make);
 }

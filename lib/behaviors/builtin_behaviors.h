@@ -17,5 +17,7 @@ BehaviorSpec lightRandomizerSpec();
 std::unique_ptr<Behavior> makeLightRandomizer();
 BehaviorSpec textureRandomizerSpec();
 std::unique_ptr<Behavior> makeTextureRandomizer();
+BehaviorSpec volumeStackRandomizerSpec();
+std::unique_ptr<Behavior> makeVolumeStackRandomizer();
 
 }  // namespace sdg

@@ -7,11 +7,6 @@
 
 namespace sdg {
 
-std::string MeshKey::id() const {
-  std::string key(primTypeInfo(shape).name);
-  if (shape == PrimType::Mesh) return key + ":" + asset + "#" + submesh;
-  return key + ":" + text::formatDouble(a) + ":" + text::formatDouble(b) + ":" + text::formatDouble(c) + ":" + axis;
-}
 
 const Prim* boundMaterial(const Stage& stage, const Prim& prim) {
   const Prim* closest = nullptr;
@@ -37,34 +32,6 @@ bool invisible(const Prim& prim) {
   return false;
 }
 
-char axisOf(const Prim& prim) { return prim.getString("axis")[0]; }
-
-MeshKey meshKeyOf(const Prim& prim) {
-  MeshKey key;
-  key.shape = prim.type();
-  switch (prim.type()) {
-    case PrimType::Mesh:
-      key.asset = prim.getString("asset");
-      key.submesh = prim.getString("submesh");
-      break;
-    case PrimType::Cube: key.a = prim.getDouble("size"); break;
-    case PrimType::Sphere: key.a = prim.getDouble("radius"); break;
-    case PrimType::Cylinder:
-    case PrimType::Cone:
-    case PrimType::Capsule:
-      key.a = prim.getDouble("radius");
-      key.b = prim.getDouble("height");
-      key.axis = axisOf(prim);
-      break;
-    case PrimType::Plane:
-      key.b = prim.getDouble("width");
-      key.c = prim.getDouble("length");
-      key.axis = axisOf(prim);
-      break;
-    default: break;
-  }
-  return key;
-}
 
 RenderMaterial materialOf(const Stage& stage, const Prim& prim) {
   RenderMaterial m;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "assets/mesh_source.h"
 #include "stage/stage.h"
 
 namespace sdg {
@@ -26,15 +27,6 @@ struct RenderCamera {
   float fStop = 0.0f;
 };
 
-// What geometry to draw: a procedural shape or an asset file.
-struct MeshKey {
-  PrimType shape = PrimType::Cube;  // Mesh for files
-  std::string asset;                // resolved later by the renderer's cache
-  std::string submesh;
-  double a = 0, b = 0, c = 0;       // size / radius, height / width, length
-  char axis = 'Z';
-  std::string id() const;           // a stable cache key
-};
 
 struct RenderMaterial {
   bool fromPrim = false;  // a Material prim is bound; otherwise the mesh file's or displayColor

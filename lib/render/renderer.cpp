@@ -5,8 +5,6 @@
 #include <limits>
 
 #include "assets/image.h"
-#include "assets/mesh_loader.h"
-#include "assets/primitives.h"
 #include "core/diagnostics.h"
 #include "render/camera_math.h"
 #include "render/shaders.h"
@@ -122,24 +120,6 @@ int lightTypeCode(LightKind kind) {
 
 }  // namespace
 
-MeshData meshDataFor(const MeshKey& key, const AssetResolver& assets, const std::string& primPath) {
-  switch (key.shape) {
-    case PrimType::Cube: return makeCube(key.a);
-    case PrimType::Sphere: return makeSphere(key.a);
-    case PrimType::Cylinder: return makeCylinder(key.a, key.b, key.axis);
-    case PrimType::Cone: return makeCone(key.a, key.b, key.axis);
-    case PrimType::Capsule: return makeCapsule(key.a, key.b, key.axis);
-    case PrimType::Plane: return makePlane(key.b, key.c, key.axis);
-    default: break;
-  }
-  std::optional<std::string> path = assets.resolve(key.asset);
-  if (!path) throw RunError(primPath + ": mesh '" + key.asset + "' not found; " + assets.describeSearch(key.asset));
-  try {
-    return loadMeshFile(*path, key.submesh);
-  } catch (const RunError& e) {
-    throw RunError(primPath + ": " + e.what());
-  }
-}
 
 Renderer::Renderer(GlContext& context, const AssetResolver& assets, const RenderSettings& settings)
     : context_(context), gl_(context.gl()), assets_(assets), settings_(settings) {

@@ -93,7 +93,4 @@ class Renderer {
   std::vector<float> scratchFloat_;
 };
 
-// Resolves and loads mesh data for a key (shape generator or file).
-MeshData meshDataFor(const MeshKey& key, const AssetResolver& assets, const std::string& primPath);
-
 }  // namespace sdg

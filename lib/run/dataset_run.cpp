@@ -14,9 +14,11 @@
 #include "run/preroll.h"
 #include "run/progress.h"
 #include "run/record.h"
+#include "run/scene_setup.h"
 #include "stage/path.h"
 #include "writers/basic_writer.h"
 #include "writers/coco_writer.h"
+#include "writers/png_encoder.h"
 #include "writers/write_pool.h"
 
 namespace sdg {
@@ -44,6 +46,23 @@ void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
     if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
     writeFileAtomic(path.string(), file.bytes);
   }
+}
+
+// renderSimulation: the colour image of every render product, one file per
+// physics step, under <out>/simulation/<camera>/.
+void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vector<std::string>& cameraPaths,
+                          const std::vector<std::string>& productNames, const std::string& outDir, uint64_t index) {
+  RenderList list = buildRenderList(stage);
+  char name[32];
+  std::snprintf(name, sizeof name, "rgb_%06llu.png", static_cast<unsigned long long>(index));
+  for (size_t product = 0; product < cameraPaths.size(); ++product)
+    for (size_t c = 0; c < list.cameras.size(); ++c) {
+      if (list.cameras[c].path != cameraPaths[product]) continue;
+      FramePasses passes;
+      renderer.render(list, c, passes);
+      std::vector<uint8_t> png = encodePng(passes.rgba, uint32_t(passes.width), uint32_t(passes.height), PngPixels::Rgba8);
+      writeFiles(outDir, {{"simulation/" + productNames[product] + "/" + name, std::move(png)}});
+    }
 }
 
 }  // namespace
@@ -85,19 +104,26 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   std::unique_ptr<GlContext> context = createOsMesaContext();
   Renderer renderer(*context, loaded.assets, settings);
 
-  BehaviorContext behaviorContext;
-  behaviorContext.assets = &loaded.assets;
-  behaviorContext.runSeed = options.seed;
+  RunBehaviorSetup setup;
+  BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
+  DatasetRunResult result;
+  behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
+    writeSimulationFrame(stage, renderer, cameraPaths, productNames, options.outDir, result.simulationFrames++);
+  };
   BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
   runtime.init();
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  DatasetRunResult result;
   auto t0 = Clock::now();
   runPreroll(scene.events, runtime);
   result.stages.preroll = since(t0);
+  result.settle = setup.reports;
+  if (!options.saveStagePath.empty()) saveStageAfterPreroll(loaded, options.saveStagePath);
   std::unique_ptr<ChangeRecorder> recorder;
-  if (!options.recordPath.empty()) recorder = std::make_unique<ChangeRecorder>(options.recordPath, scene.stage);
+  if (!options.recordPath.empty()) {
+    recorder = std::make_unique<ChangeRecorder>(options.recordPath, scene.stage);
+    recorder->recordPreroll(setup.reports);
+  }
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   WritePool pool(threads, 2 * size_t(threads));
@@ -188,7 +214,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     coco->finish();
     ++files;
   }
-  result.files = files + 1;  // metadata.txt
+  result.files = files + 1 + result.simulationFrames * cameraPaths.size();  // metadata.txt, simulation frames
   result.stages.encodeWrite = double(encodeMicros) / 1e6;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -18,6 +18,7 @@ struct DatasetRunOptions {
   unsigned threads = 0;  // 0 = one per core
   std::optional<int> width, height, subframes;
   std::string recordPath;
+  std::string saveStagePath;  // --save-stage: the scene after the pre-roll
   bool progress = false;  // draw a progress bar on stderr
 };
 
@@ -34,6 +35,8 @@ struct DatasetRunResult {
   std::string backend;
   double seconds = 0;  // wall time of the run (after loading)
   StageTimes stages;
+  uint64_t simulationFrames = 0;  // renderSimulation images per camera
+  std::vector<nlohmann::ordered_json> settle;  // settle quality per stacked surface
 };
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options);

@@ -31,10 +31,13 @@ void ChangeRecorder::writeLine(const std::string& head, const Stage& now) {
     changes.push_back(std::move(change));
   }
   line["changes"] = std::move(changes);
-  std::string text = line.dump() + "\n";
+  writeText(line.dump() + "\n");
+  previous_ = now;
+}
+
+void ChangeRecorder::writeText(const std::string& text) {
   if (std::fwrite(text.data(), 1, text.size(), file_) != text.size())
     throw RunError("cannot write the record file " + path_ + ": " + std::strerror(errno));
-  previous_ = now;
 }
 
 void ChangeRecorder::recordFrame(uint64_t frame, double time, const Stage& now) {
@@ -42,6 +45,14 @@ void ChangeRecorder::recordFrame(uint64_t frame, double time, const Stage& now) 
   head["frame"] = frame;
   head["time"] = time;
   writeLine(head.dump(), now);
+}
+
+void ChangeRecorder::recordPreroll(const std::vector<nlohmann::ordered_json>& settle) {
+  nlohmann::ordered_json head;
+  head["event"] = "preroll";
+  head["settle"] = settle;
+  head["changes"] = nlohmann::ordered_json::array();  // the record starts from the stage after the pre-roll
+  writeText(head.dump() + "\n");
 }
 
 void ChangeRecorder::recordStop(const Stage& now) { writeLine(R"({"event": "stop"})", now); }

@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "stage/stage.h"
 
@@ -19,6 +22,8 @@ class ChangeRecorder {
   ChangeRecorder(const ChangeRecorder&) = delete;
   ChangeRecorder& operator=(const ChangeRecorder&) = delete;
 
+  // The first line: {"event": "preroll", "settle": [...]}.
+  void recordPreroll(const std::vector<nlohmann::ordered_json>& settle);
   void recordFrame(uint64_t frame, double time, const Stage& now);
   void recordStop(const Stage& now);
   // Flushes and closes; a write error throws RunError naming the file.
@@ -26,6 +31,7 @@ class ChangeRecorder {
 
  private:
   void writeLine(const std::string& head, const Stage& now);
+  void writeText(const std::string& text);
   std::string path_;
   std::FILE* file_ = nullptr;
   Stage previous_;

@@ -48,6 +48,7 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
                   {"total", total}};
   j["frames_per_second"] = r.seconds > 0 ? double(r.frames) / r.seconds : 0.0;
   j["peak_rss_mb"] = peakRssMb();
+  j["settle"] = r.settle;
   return j;
 }
 

@@ -3,7 +3,9 @@
 #include <filesystem>
 
 #include "behaviors/builtin_behaviors.h"
+#include "core/file_io.h"
 #include "scene_io/scene_loader.h"
+#include "scene_io/scene_writer.h"
 
 namespace sdg {
 
@@ -22,6 +24,44 @@ RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, s
   settings.height = height.value_or(resolution.y());
   settings.subframes = subframes.value_or(int(scene.render.getUInt("subframes")));
   return settings;
+}
+
+PhysicsSettings physicsSettingsFor(const Scene& scene) {
+  const OptionSet& o = scene.physics;
+  PhysicsSettings s;
+  s.gravity = o.get("gravity").get<double>();
+  s.density = o.get("density").get<double>();
+  s.solverIterations = o.getUInt("solver_iterations");
+  s.settleLinearSpeed = o.get("settle_linear_speed").get<double>();
+  s.settleAngularSpeed = o.get("settle_angular_speed").get<double>();
+  s.maxSettleSteps = o.getUInt("max_settle_steps");
+  s.requireSettled = o.get("require_settled").get<bool>();
+  return s;
+}
+
+BehaviorContext behaviorContextFor(LoadedScene& loaded, int64_t seed, RunBehaviorSetup& setup) {
+  setup.physics = physicsSettingsFor(loaded.scene);
+  BehaviorContext context;
+  context.assets = &loaded.assets;
+  context.runSeed = seed;
+  context.physics = &setup.physics;
+  context.hooks.report = [&setup](const std::string&, const nlohmann::ordered_json& report) {
+    setup.reports.push_back(report);
+  };
+  return context;
+}
+
+void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path) {
+  Scene saved = loaded.scene;
+  saved.events.clear();
+  // Absolute roots and plugins, so the file works from any folder.
+  saved.assetRoots.clear();
+  for (const std::string& root : loaded.assets.roots())
+    saved.assetRoots.push_back(std::filesystem::absolute(root).lexically_normal().string());
+  for (std::string& plugin : saved.plugins)
+    if (std::filesystem::path(plugin).is_relative())
+      plugin = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / plugin).lexically_normal().string();
+  writeFileAtomic(path, writeSceneYaml(saved, loaded.registry.catalog()));
 }
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {

@@ -10,6 +10,8 @@
 #include "assets/asset_resolver.h"
 #include "render/renderer.h"
 #include "behavior/registry.h"
+#include "behavior/behavior.h"
+#include "physics/physics_settings.h"
 #include "scene_io/scene.h"
 
 namespace sdg {
@@ -30,6 +32,21 @@ struct LoadedScene {
 // The scene's render settings with command-line overrides applied.
 RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
                                  std::optional<int> subframes);
+
+// The scene's physics section as the settings the stacking code reads.
+PhysicsSettings physicsSettingsFor(const Scene& scene);
+
+// What the run's behaviors may use: the scene's assets and physics
+// settings, and a report hook that appends to `reports` (settle quality).
+struct RunBehaviorSetup {
+  PhysicsSettings physics;
+  std::vector<nlohmann::ordered_json> reports;
+};
+BehaviorContext behaviorContextFor(LoadedScene& loaded, int64_t seed, RunBehaviorSetup& setup);
+
+// `--save-stage FILE`: the scene as it stands after the pre-roll, without
+// its events (they have run), so reloading it renders the same stacks.
+void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 
 // Throws SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);

@@ -6,23 +6,27 @@
 #include "core/log.h"
 #include "run/preroll.h"
 #include "run/record.h"
+#include "run/scene_setup.h"
 
 namespace sdg {
 
 TimelineRunResult runTimeline(LoadedScene& loaded, const TimelineRunOptions& options) {
   Stage& stage = loaded.scene.stage;
-  BehaviorContext context;
-  context.assets = &loaded.assets;
-  context.runSeed = options.seed;
-  BehaviorRuntime runtime(stage, loaded.registry, context);
+  RunBehaviorSetup setup;
+  BehaviorRuntime runtime(stage, loaded.registry, behaviorContextFor(loaded, options.seed, setup));
   runtime.init();
   runPreroll(loaded.scene.events, runtime);
+  if (!options.saveStagePath.empty()) saveStageAfterPreroll(loaded, options.saveStagePath);
 
   const Stage beforePlay = stage;
   std::unique_ptr<ChangeRecorder> recorder;
-  if (!options.recordPath.empty()) recorder = std::make_unique<ChangeRecorder>(options.recordPath, beforePlay);
+  if (!options.recordPath.empty()) {
+    recorder = std::make_unique<ChangeRecorder>(options.recordPath, beforePlay);
+    recorder->recordPreroll(setup.reports);
+  }
 
   TimelineRunResult result;
+  result.settle = setup.reports;
   result.behaviors = runtime.behaviorCount();
   runtime.play();
   for (uint64_t frame = 0; frame < options.frames; ++frame) {

@@ -13,13 +13,15 @@ struct TimelineRunOptions {
   uint64_t frames = 1;
   int64_t seed = 0;
   std::string recordPath;  // "" = no record
+  std::string saveStagePath;  // "" = none
 };
 
 struct TimelineRunResult {
   uint64_t frames = 0;
   uint64_t updates = 0;
   size_t behaviors = 0;
-  bool stageRestored = false;  // the stage after stop equals the stage before play
+  bool stageRestored = false;
+  std::vector<nlohmann::ordered_json> settle;  // one report per stacked surface  // the stage after stop equals the stage before play
 };
 
 TimelineRunResult runTimeline(LoadedScene& loaded, const TimelineRunOptions& options);

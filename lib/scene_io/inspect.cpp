@@ -56,6 +56,7 @@ std::string inspectScene(const Scene& scene) {
   if (!scene.assetRoots.empty()) out << "asset_roots: " << text::join(scene.assetRoots, ", ") << "\n";
   if (!scene.plugins.empty()) out << "plugins: " << text::join(scene.plugins, ", ") << "\n";
   out << "render: " << options(scene.render) << "\n";
+  out << "physics: " << options(scene.physics) << "\n";
   out << "capture: " << options(scene.capture) << "\n";
   for (const WriterConfig& w : scene.writers) {
     // Only what differs from the defaults: the enabled annotators, mostly.

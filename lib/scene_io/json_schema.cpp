@@ -202,6 +202,7 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
                       {"type", "array"},
                       {"items", {{"type", "string"}}}};
   props["render"] = optionsObject(renderOptionSpecs(), "Rendering settings.");
+  props["physics"] = optionsObject(physicsOptionSpecs(), "Rigid-body settings of the stacking simulation.");
   props["capture"] = optionsObject(captureOptionSpecs(), "What to capture.");
   props["writer"] = {{"description", "One writer, or a list of writers of different types."},
                      {"oneOf", {{{"$ref", "#/definitions/writer"}},

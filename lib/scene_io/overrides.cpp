@@ -100,6 +100,8 @@ void applyToSettings(const Override& o, Scene& scene, Diagnostics& diag) {
   std::string key = dot == std::string::npos ? "" : o.target.substr(dot + 1);
   if (section == "render") {
     applyToOptions(o, section, key, renderOptionSpecs(), scene.render, diag);
+  } else if (section == "physics") {
+    applyToOptions(o, section, key, physicsOptionSpecs(), scene.physics, diag);
   } else if (section == "capture") {
     applyToOptions(o, section, key, captureOptionSpecs(), scene.capture, diag);
   } else if (section == "stage") {
@@ -131,9 +133,9 @@ void applyToSettings(const Override& o, Scene& scene, Diagnostics& diag) {
     }
     applyToOptions(o, "writer " + writer->type, key, findWriterType(writer->type)->options, writer->options, diag);
   } else {
-    std::vector<std::string> sections = {"render", "capture", "stage", "writer"};
+    std::vector<std::string> sections = {"render", "capture", "physics", "stage", "writer"};
     diag.error(o.targetLoc, o.label + ": unknown target " + text::quote(o.target) +
-                                "; expected /PRIM/PATH.ATTRIBUTE or one of render.*, capture.*, stage.*, writer.*" +
+                                "; expected /PRIM/PATH.ATTRIBUTE or one of render.*, capture.*, physics.*, stage.*, writer.*" +
                                 text::didYouMean(section, sections));
   }
 }

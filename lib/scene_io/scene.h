@@ -65,6 +65,7 @@ struct Scene {
   Stage stage;
   OptionSet render;
   OptionSet capture;
+  OptionSet physics;
   std::vector<WriterConfig> writers;
   std::vector<EventStep> events;
   std::vector<std::string> assetRoots;
@@ -72,7 +73,7 @@ struct Scene {
 
   Scene();
   bool operator==(const Scene& o) const {
-    return stage == o.stage && render == o.render && capture == o.capture && writers == o.writers &&
+    return stage == o.stage && render == o.render && capture == o.capture && physics == o.physics && writers == o.writers &&
            events == o.events && assetRoots == o.assetRoots && plugins == o.plugins;
   }
 };
@@ -80,6 +81,7 @@ struct Scene {
 // The option tables, shared by the loader, the writer and the JSON Schema.
 std::span<const AttributeSpec> stageOptionSpecs();
 std::span<const AttributeSpec> renderOptionSpecs();
+std::span<const AttributeSpec> physicsOptionSpecs();
 std::span<const AttributeSpec> captureOptionSpecs();
 struct WriterTypeInfo {
   std::string_view name;

@@ -177,6 +177,10 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
     MapReader section(*n, "render", diag);
     readOptions(section, renderOptionSpecs(), scene.render, diag);
   }
+  if (const RawNode* n = top.get("physics")) {
+    MapReader section(*n, "physics", diag);
+    readOptions(section, physicsOptionSpecs(), scene.physics, diag);
+  }
   if (const RawNode* n = top.get("capture")) {
     MapReader section(*n, "capture", diag);
     readOptions(section, captureOptionSpecs(), scene.capture, diag);

@@ -208,6 +208,7 @@ std::string writeSceneYaml(const Scene& scene, const BehaviorCatalog& catalog, c
   emitStringList(out, "asset_roots", scene.assetRoots);
   emitStringList(out, "plugins", scene.plugins);
   emitOptions(out, "render", renderOptionSpecs(), scene.render);
+  emitOptions(out, "physics", physicsOptionSpecs(), scene.physics);
   emitOptions(out, "capture", captureOptionSpecs(), scene.capture);
   if (scene.writers.size() == 1) {
     out << YAML::Key << "writer" << YAML::Value;

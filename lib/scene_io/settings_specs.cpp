@@ -54,6 +54,23 @@ const std::vector<AttributeSpec>& captureSpecs() {
   return specs;
 }
 
+const std::vector<AttributeSpec>& physicsSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      atLeast(0, option("gravity", Value::makeDouble(9.81), "Gravity along -up (m/s^2).")),
+      atLeast(1e-6, option("density", Value::makeDouble(1000.0),
+                           "Density of dropped assets (kg/m^3); mass is density times collider volume.")),
+      atLeast(1, option("solver_iterations", Value::makeUInt(20), "ODE QuickStep iterations per step.")),
+      atLeast(0, option("settle_linear_speed", Value::makeDouble(0.01),
+                        "A stack is settled when no asset's net speed over the last 30 steps exceeds this (m/s)...")),
+      atLeast(0, option("settle_angular_speed", Value::makeDouble(0.1), "...and no asset turns faster than this (rad/s).")),
+      option("max_settle_steps", Value::makeUInt(600),
+             "Extra steps allowed after the fixed stacking schedule to reach the settle speeds."),
+      option("require_settled", Value::makeBool(false),
+             "Fail the run (exit 1) when a stack is still moving after max_settle_steps; otherwise warn."),
+  };
+  return specs;
+}
+
 const std::vector<AttributeSpec>& basicWriterSpecs() {
   auto flag = [](std::string name, bool fallback, std::string doc) {
     return option(std::move(name), Value::makeBool(fallback), std::move(doc));
@@ -117,10 +134,11 @@ const SourceLoc* OptionSet::locOf(std::string_view name) const {
   return it == locs_.end() ? nullptr : &it->second;
 }
 
-Scene::Scene() : render(renderOptionSpecs()), capture(captureOptionSpecs()) {}
+Scene::Scene() : render(renderOptionSpecs()), capture(captureOptionSpecs()), physics(physicsOptionSpecs()) {}
 
 std::span<const AttributeSpec> stageOptionSpecs() { return stageSpecs(); }
 std::span<const AttributeSpec> renderOptionSpecs() { return renderSpecs(); }
+std::span<const AttributeSpec> physicsOptionSpecs() { return physicsSpecs(); }
 std::span<const AttributeSpec> captureOptionSpecs() { return captureSpecs(); }
 
 std::span<const WriterTypeInfo> writerTypes() {
