@@ -168,10 +168,13 @@ class StackRun {
       SurfaceSettleReport& r = result_.reports[a.surface];
       BodyPose pose = world_->pose(a.body);
       result_.poses[a.surface][a.index] = pose;
-      if (a.body < windowSpeeds_.size()) {
-        r.maxLinearSpeed = std::max(r.maxLinearSpeed, windowSpeeds_[a.body].first);
-        r.maxAngularSpeed = std::max(r.maxAngularSpeed, windowSpeeds_[a.body].second);
-      }
+      // Without a settle window (max_settle_steps 0) the speeds are the instantaneous ones.
+      auto [linear, angular] = a.body < windowSpeeds_.size()
+                                   ? windowSpeeds_[a.body]
+                                   : std::make_pair(world_->linearVelocity(a.body).norm(),
+                                                    world_->angularVelocity(a.body).norm());
+      r.maxLinearSpeed = std::max(r.maxLinearSpeed, linear);
+      r.maxAngularSpeed = std::max(r.maxAngularSpeed, angular);
       r.maxPenetrationSurface = std::max(r.maxPenetrationSurface, depths[a.body].againstStatic);
       r.maxPenetrationAssets = std::max(r.maxPenetrationAssets, depths[a.body].betweenBodies);
       const StackAsset& asset = plan_.assets[a.surface][a.index];

@@ -13,7 +13,8 @@ TEST_CASE("behavior errors: unknown names, variables, types, ranges and targets"
   } cases[] = {
       {"{locationRandomiser: {}}",
        "t.yaml:4:32: error: /A: unknown behavior 'locationRandomiser'; known behaviors: locationRandomizer, "
-       "rotationRandomizer, lookAtBehavior, lightRandomizer, textureRandomizer (did you mean 'locationRandomizer'?)"},
+       "rotationRandomizer, lookAtBehavior, lightRandomizer, textureRandomizer, volumeStackRandomizer (did you mean "
+       "'locationRandomizer'?)"},
       {"{locationRandomizer: {intervall: 2}}",
        "/A locationRandomizer: unknown key 'intervall' (did you mean 'interval'?)"},
       {"{locationRandomizer: {interval: -1}}",

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""`run --no-render --record`: every line is JSON with frame, time and changes;
-the same seed twice gives byte-identical files; another seed differs."""
+"""`run --no-render --record`: a pre-roll line with the settle reports, then
+every line is JSON with frame, time and changes; the same seed twice gives
+byte-identical files; another seed differs."""
 import json
 import os
 import subprocess
@@ -23,8 +24,11 @@ def main():
         c = record(binary, scene, 11, os.path.join(tmp, "c.jsonl"))
     lines = [json.loads(line) for line in a.decode().splitlines()]
     failures = []
+    if not lines or lines[0].get("event") != "preroll" or not isinstance(lines[0].get("settle"), list):
+        failures.append(f"the first line is not the pre-roll line: {lines[:1]}")
+    lines = lines[1:]
     if len(lines) != 7:
-        failures.append(f"expected 6 frame lines and a stop line, found {len(lines)}")
+        failures.append(f"expected 6 frame lines and a stop line after the pre-roll, found {len(lines)}")
     for i, line in enumerate(lines[:6]):
         if line.get("frame") != i or "time" not in line or not isinstance(line.get("changes"), list):
             failures.append(f"line {i + 1} malformed: {line}")
