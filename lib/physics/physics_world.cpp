@@ -31,7 +31,8 @@ std::string formatVec(const Vec3d& v) {
 
 struct PhysicsWorld::Impl {
   dWorldID world = nullptr;
-  dSpaceID space = nullptr;
+  dSpaceID space = nullptr;         // dynamic bodies
+  dSpaceID staticSpace = nullptr;   // walls: few and large, tested against each body's box
   dJointGroupID contacts = nullptr;
   bool createJoints = true;
 };
@@ -50,6 +51,7 @@ PhysicsWorld::PhysicsWorld(const Config& config) : impl_(std::make_unique<Impl>(
   ode::resetRandomSeed();
   impl_->world = dWorldCreate();
   impl_->space = dHashSpaceCreate(nullptr);
+  impl_->staticSpace = dSimpleSpaceCreate(nullptr);
   impl_->contacts = dJointGroupCreate(0);
   dWorldSetGravity(impl_->world, config.gravity.x(), config.gravity.y(), config.gravity.z());
   dWorldSetERP(impl_->world, 0.2);
@@ -71,7 +73,8 @@ PhysicsWorld::~PhysicsWorld() {
     dBodyDestroy(b.body);
   }
   dJointGroupDestroy(impl_->contacts);
-  dSpaceDestroy(impl_->space);  // destroys the static geoms it still holds
+  dSpaceDestroy(impl_->space);
+  dSpaceDestroy(impl_->staticSpace);  // destroys the static geoms it holds
   dWorldDestroy(impl_->world);
 }
 
@@ -140,7 +143,7 @@ PhysicsWorld::BodyId PhysicsWorld::addBody(std::shared_ptr<const Collider> colli
 
 void PhysicsWorld::addStaticBox(const Vec3d& halfExtents, const Vec3d& center, const Matrix3d& rotation) {
   Vec3d size = 2 * halfExtents;
-  dGeomID g = dCreateBox(impl_->space, size.x(), size.y(), size.z());
+  dGeomID g = dCreateBox(impl_->staticSpace, size.x(), size.y(), size.z());
   dGeomSetPosition(g, center.x(), center.y(), center.z());
   dMatrix3 r;
   for (int i = 0; i < 3; ++i) {
@@ -150,6 +153,10 @@ void PhysicsWorld::addStaticBox(const Vec3d& halfExtents, const Vec3d& center, c
   dGeomSetRotation(g, r);
   dGeomSetCategoryBits(g, kStaticCategory);
   dGeomSetCollideBits(g, kDynamicCategory);
+}
+
+void PhysicsWorld::setSolverIterations(uint32_t iterations) {
+  dWorldSetQuickStepNumIterations(impl_->world, int(iterations));
 }
 
 void PhysicsWorld::addForceAtPoint(BodyId body, const Vec3d& force, const Vec3d& point) {
@@ -191,6 +198,8 @@ void PhysicsWorld::nearCallback(void* data, dGeomID g1, dGeomID g2) {
 void PhysicsWorld::collide(bool createJoints) {
   impl_->createJoints = createJoints;
   dSpaceCollide(impl_->space, this, &PhysicsWorld::nearCallback);
+  dSpaceCollide2(reinterpret_cast<dGeomID>(impl_->space), reinterpret_cast<dGeomID>(impl_->staticSpace), this,
+                 &PhysicsWorld::nearCallback);
 }
 
 void PhysicsWorld::step() {

@@ -51,6 +51,8 @@ class PhysicsWorld {
   // `name` appears in error messages ("asset X on surface Y").
   BodyId addBody(std::shared_ptr<const Collider> collider, const BodyPose& pose, std::string name);
   void addStaticBox(const Vec3d& halfExtents, const Vec3d& center, const Matrix3d& rotation);
+  // QuickStep iterations from the next step on.
+  void setSolverIterations(uint32_t iterations);
   // Coulomb friction of every contact from now on.
   void setFriction(double mu) { friction_ = mu; }
   // A force for the next step only, applied at a world point.
