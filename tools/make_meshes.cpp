@@ -1,12 +1,15 @@
 // Generates the small mesh files under scenes/props/ and tests/data/meshes/
 // (made by this project; see third_party_notes/project-assets.md): a crate
-// with two materials, written in every format sdgbehave reads, through
-// assimp's exporters. Deterministic: running it again rewrites the same files.
+// with two materials, written in every format sdgbehave reads, and the
+// warehouse demo's props as GLB (two cartons, a bin, a pallet with slats, a
+// drill-like tool), through assimp's exporters. Deterministic: running it again rewrites the same files.
 //
 //   build/release/tools/sdg_make_meshes <output folder>
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +48,50 @@ void addBox(std::vector<Vertex>& v, std::vector<unsigned>& idx, const float c[3]
   }
 }
 
+// A closed cylinder along X centred at c: `segments` side quads and two caps.
+void addCylinderX(std::vector<Vertex>& v, std::vector<unsigned>& idx, const float c[3], float radius, float halfLength,
+                  int segments) {
+  const float pi = 3.14159265358979f;
+  for (int s = 0; s < segments; ++s) {
+    float a0 = 2 * pi * float(s) / float(segments), a1 = 2 * pi * float(s + 1) / float(segments);
+    unsigned base = unsigned(v.size());
+    for (float a : {a0, a1})
+      for (float x : {-halfLength, halfLength}) {
+        Vertex p{};
+        p.p[0] = c[0] + x, p.p[1] = c[1] + radius * std::cos(a), p.p[2] = c[2] + radius * std::sin(a);
+        p.n[1] = std::cos(a), p.n[2] = std::sin(a);
+        p.uv[0] = a / (2 * pi), p.uv[1] = x > 0 ? 1.f : 0.f;
+        v.push_back(p);
+      }
+    idx.insert(idx.end(), {base, base + 2, base + 3, base, base + 3, base + 1});
+    for (float x : {-halfLength, halfLength}) {  // cap triangle fan pieces
+      unsigned cb = unsigned(v.size());
+      float sign = x > 0 ? 1.f : -1.f;
+      for (float a : {-1.f, a0, a1}) {
+        Vertex p{};
+        p.p[0] = c[0] + x;
+        p.p[1] = c[1] + (a < 0 ? 0 : radius * std::cos(a));
+        p.p[2] = c[2] + (a < 0 ? 0 : radius * std::sin(a));
+        p.n[0] = sign;
+        v.push_back(p);
+      }
+      if (sign > 0) idx.insert(idx.end(), {cb, cb + 1, cb + 2});
+      else idx.insert(idx.end(), {cb, cb + 2, cb + 1});
+    }
+  }
+}
+
+struct Part {
+  const char* name;
+  std::vector<Vertex> v;
+  std::vector<unsigned> idx;
+  unsigned material;
+  void box(float cx, float cy, float cz, float hx, float hy, float hz) {
+    const float c[3] = {cx, cy, cz}, h[3] = {hx, hy, hz};
+    addBox(v, idx, c, h);
+  }
+};
+
 aiMesh* makeMesh(const char* name, const std::vector<Vertex>& v, const std::vector<unsigned>& idx, unsigned material) {
   auto* mesh = new aiMesh();
   mesh->mName = name;
@@ -76,6 +123,84 @@ aiMaterial* makeMaterial(const char* name, float r, float g, float b) {
   aiColor3D c(r, g, b);
   m->AddProperty(&c, 1, AI_MATKEY_COLOR_DIFFUSE);
   return m;
+}
+
+// One prop: parts with their materials, exported as GLB.
+bool exportProp(const std::filesystem::path& file, std::vector<Part> parts,
+                const std::vector<std::pair<const char*, std::array<float, 3>>>& materials) {
+  aiScene scene;
+  scene.mRootNode = new aiNode(file.stem().string());
+  scene.mNumMaterials = unsigned(materials.size());
+  scene.mMaterials = new aiMaterial*[materials.size()];
+  for (size_t i = 0; i < materials.size(); ++i)
+    scene.mMaterials[i] = makeMaterial(materials[i].first, materials[i].second[0], materials[i].second[1],
+                                       materials[i].second[2]);
+  scene.mNumMeshes = unsigned(parts.size());
+  scene.mMeshes = new aiMesh*[parts.size()];
+  scene.mRootNode->mNumMeshes = unsigned(parts.size());
+  scene.mRootNode->mMeshes = new unsigned[parts.size()];
+  for (size_t i = 0; i < parts.size(); ++i) {
+    scene.mMeshes[i] = makeMesh(parts[i].name, parts[i].v, parts[i].idx, parts[i].material);
+    scene.mRootNode->mMeshes[i] = unsigned(i);
+  }
+  Assimp::Exporter exporter;
+  if (exporter.Export(&scene, "glb2", file.string()) == AI_SUCCESS) return true;
+  std::fprintf(stderr, "%s: %s\n", file.string().c_str(), exporter.GetErrorString());
+  return false;
+}
+
+// The warehouse demo's props, origin at the bottom centre, metres, +Z up.
+int writeWarehouseProps(const std::filesystem::path& out) {
+  int failures = 0;
+  const std::array<float, 3> cardboard{0.62f, 0.45f, 0.28f}, tape{0.85f, 0.8f, 0.7f};
+  {  // A closed carton with a tape strip over the seam of its top flaps.
+    Part body{"body", {}, {}, 0}, strip{"tape", {}, {}, 1};
+    body.box(0, 0, 0.15f, 0.2f, 0.15f, 0.15f);
+    body.box(-0.1f, 0, 0.3025f, 0.0995f, 0.15f, 0.0025f);  // two top flaps meeting in the middle
+    body.box(0.1f, 0, 0.3025f, 0.0995f, 0.15f, 0.0025f);
+    strip.box(0, 0, 0.306f, 0.025f, 0.152f, 0.001f);
+    failures += !exportProp(out / "cardbox_a.glb", {body, strip}, {{"cardboard", cardboard}, {"tape", tape}});
+  }
+  {  // An open carton: four flaps standing up around the top edge.
+    Part body{"body", {}, {}, 0}, flaps{"flaps", {}, {}, 0};
+    body.box(0, 0, 0.125f, 0.25f, 0.175f, 0.125f);
+    flaps.box(0, 0.1725f, 0.3f, 0.25f, 0.0025f, 0.05f);
+    flaps.box(0, -0.1725f, 0.3f, 0.25f, 0.0025f, 0.05f);
+    flaps.box(0.2475f, 0, 0.3f, 0.0025f, 0.17f, 0.05f);
+    flaps.box(-0.2475f, 0, 0.3f, 0.0025f, 0.17f, 0.05f);
+    failures += !exportProp(out / "cardbox_b.glb", {body, flaps}, {{"cardboard", {0.55f, 0.4f, 0.25f}}});
+  }
+  {  // A small open plastic bin: floor, four walls and a rim.
+    Part bin{"bin", {}, {}, 0};
+    bin.box(0, 0, 0.005f, 0.15f, 0.1f, 0.005f);
+    bin.box(0, 0.095f, 0.075f, 0.15f, 0.005f, 0.075f);
+    bin.box(0, -0.095f, 0.075f, 0.15f, 0.005f, 0.075f);
+    bin.box(0.145f, 0, 0.075f, 0.005f, 0.1f, 0.075f);
+    bin.box(-0.145f, 0, 0.075f, 0.005f, 0.1f, 0.075f);
+    failures += !exportProp(out / "bin.glb", {bin}, {{"blue_plastic", {0.1f, 0.3f, 0.7f}}});
+  }
+  {  // A 1.2 x 1.0 m pallet: 7 top slats, 3 stringer blocks rows, 3 bottom boards.
+    Part wood{"pallet", {}, {}, 0};
+    for (int i = 0; i < 7; ++i) wood.box(-0.54f + 0.18f * float(i), 0, 0.135f, 0.05f, 0.5f, 0.011f);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) wood.box(-0.55f + 0.55f * float(i), -0.45f + 0.45f * float(j), 0.075f, 0.05f, 0.05f, 0.049f);
+    for (int i = 0; i < 3; ++i) wood.box(-0.55f + 0.55f * float(i), 0, 0.013f, 0.05f, 0.5f, 0.011f);
+    // Cross boards under the slats hold the blocks together.
+    for (int j = 0; j < 3; ++j) wood.box(0, -0.45f + 0.45f * float(j), 0.1135f, 0.6f, 0.05f, 0.0105f);
+    failures += !exportProp(out / "pallet.glb", {wood}, {{"pallet_wood", {0.6f, 0.45f, 0.3f}}});
+  }
+  {  // A drill-like shape: motor body, chuck, bit, handle and battery.
+    Part shell{"shell", {}, {}, 0}, metal{"metal", {}, {}, 1}, dark{"grip", {}, {}, 2};
+    const float bodyC[3] = {0, 0, 0.2f}, chuckC[3] = {0.13f, 0, 0.2f}, bitC[3] = {0.2f, 0, 0.2f};
+    addCylinderX(shell.v, shell.idx, bodyC, 0.04f, 0.1f, 24);
+    addCylinderX(metal.v, metal.idx, chuckC, 0.022f, 0.03f, 16);
+    addCylinderX(metal.v, metal.idx, bitC, 0.004f, 0.045f, 8);
+    dark.box(-0.03f, 0, 0.11f, 0.025f, 0.02f, 0.06f);
+    shell.box(-0.03f, 0, 0.03f, 0.06f, 0.04f, 0.03f);
+    failures += !exportProp(out / "drill.glb", {shell, metal, dark},
+                            {{"drill_red", {0.75f, 0.12f, 0.08f}}, {"steel", {0.7f, 0.7f, 0.72f}}, {"grip", {0.08f, 0.08f, 0.08f}}});
+  }
+  return failures;
 }
 
 }  // namespace
@@ -129,5 +254,6 @@ int main(int argc, char** argv) {
     if (size_t at = content.find(from); at != std::string::npos) content.replace(at, from.size(), to);
   }
   std::ofstream(fbx, std::ios::binary) << content;
+  failures += writeWarehouseProps(out);
   return failures ? 1 : 0;
 }
