@@ -18,6 +18,7 @@
 #include "stage/path.h"
 #include "writers/basic_writer.h"
 #include "writers/coco_writer.h"
+#include "writers/contact_sheet.h"
 #include "writers/png_encoder.h"
 #include "writers/write_pool.h"
 
@@ -46,6 +47,21 @@ void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
     if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
     writeFileAtomic(path.string(), file.bytes);
   }
+}
+
+// A frame's thumbnail with the tight box and class of every visible entity.
+void addToSheet(ContactSheet& sheet, uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
+                const std::vector<Renderer::Coverage>& coverage) {
+  std::vector<SheetBox> boxes;
+  for (size_t e = 0; e < semantics.entities.size() && e < coverage.size(); ++e) {
+    const Renderer::Coverage& c = coverage[e];
+    if (c.pixels == 0) continue;
+    const LabelSet& labels = semantics.entities[e].labels;
+    auto cls = labels.find("class");
+    std::string label = cls != labels.end() ? cls->second : labels.empty() ? "" : labels.begin()->second;
+    boxes.push_back({c.xMin, c.yMin, c.xMax, c.yMax, semantics.entities[e].semanticId, label});
+  }
+  sheet.add(frame, passes.rgba, passes.width, passes.height, boxes);
 }
 
 // renderSimulation: the colour image of every render product, one file per
@@ -141,6 +157,8 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
   Progress progress(options.frames, options.progress);
+  std::unique_ptr<ContactSheet> sheet;
+  if (scene.capture.get("contact_sheet").get<bool>()) sheet = std::make_unique<ContactSheet>(options.frames);
 
   runtime.play();
   for (uint64_t frame = 0; frame < options.frames; ++frame) {
@@ -170,7 +188,8 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       auto renderStart = Clock::now();
       renderer.render(list, cameraIndex, job->passes);
       std::vector<Renderer::Coverage> coverage;
-      if (writer.needsCoverage() || coco) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+      const bool toSheet = sheet && product == 0 && sheet->wants(frame);
+      if (writer.needsCoverage() || coco || toSheet) renderer.renderCoverage(list, cameraIndex, groups, coverage);
       result.stages.render += since(renderStart);
       auto annotateStart = Clock::now();
       std::vector<EntityCoverage> entityCoverage;
@@ -188,6 +207,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
       for (const RenderItem& item : list.items)
         if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+      if (toSheet) addToSheet(*sheet, frame, job->passes, semantics, coverage);
       result.stages.annotate += since(annotateStart);
       const std::string outDir = options.outDir;
       pool.submit([job, &writer, outDir, &files, &encodeMicros] {
@@ -203,6 +223,10 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     progress.update(result.frames);
   }
   progress.finish();
+  if (sheet && !sheet->empty()) {
+    writeFileAtomic((fs::path(options.outDir) / "contact_sheet.png").string(), sheet->encodePng());
+    ++files;
+  }
   runtime.stop();
   if (recorder) {
     recorder->recordStop(scene.stage);

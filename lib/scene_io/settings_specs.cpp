@@ -50,6 +50,8 @@ const std::vector<AttributeSpec>& captureSpecs() {
              "Camera prims to render, one render product each; empty means every Camera prim of the stage."),
       option("frames", Value::makeUInt(1), "Number of frames to capture."),
       option("seed", Value::makeInt(0), "Run seed; every random stream is derived from it (--seed overrides)."),
+      option("contact_sheet", Value::makeBool(true),
+             "Write <out>/contact_sheet.png: up to 36 frames of the first camera with boxes and class names."),
   };
   return specs;
 }
