@@ -8,7 +8,10 @@
 #include "core/diagnostics.h"
 #include "core/log.h"
 #include "core/file_io.h"
+#include "core/diagnostics.h"
 #include "run/dataset_run.h"
+#include "run/frame_plan.h"
+#include "run/output_folder.h"
 #include "run/progress.h"
 #include "run/run_summary.h"
 #include "run/timeline_run.h"
@@ -29,7 +32,27 @@ struct RunArgs {
   std::optional<int> subframes;
   std::string summary;
   std::string saveStage;
+  std::optional<uint64_t> iterations;
+  std::string shard;
+  std::optional<uint64_t> shardIndex, shardCount;
+  bool resume = false;
 };
+
+// Frames per iteration and iterations from the scene, then the flags.
+FramePlan framePlanFor(const Scene& scene, const RunArgs& args) {
+  FramePlan plan;
+  const uint32_t perIteration = scene.capture.getUInt("frames_per_iteration");
+  plan.framesPerIteration = args.frames.value_or(perIteration ? perIteration : scene.capture.getUInt("frames"));
+  plan.iterations = args.iterations.value_or(scene.capture.getUInt("iterations"));
+  std::optional<uint64_t> index = args.shardIndex, count = args.shardCount;
+  if (!args.shard.empty()) {
+    if (index || count) throw SceneError(SourceLoc{"--shard", 0, 0}, "give --shard i/k or --shard-index/--shard-count, not both");
+    auto [i, k] = parseShardFlag(args.shard);
+    index = i, count = k;
+  }
+  plan.shard = resolveShard(index, count, processEnvironment);
+  return plan;
+}
 }  // namespace
 
 void addRun(CLI::App& app, int& exitCode) {
@@ -58,10 +81,24 @@ void addRun(CLI::App& app, int& exitCode) {
                   "After the pre-roll, write the scene with its stacks in place (and no events) to this file: "
                   "stack once, render many times")
       ->type_name("FILE.yaml");
+  cmd->add_option("--iterations", args->iterations,
+                  "Repetitions of pre-roll + frames, each with fresh random streams (overrides capture.iterations)")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40))
+      ->type_name("I");
+  cmd->add_option("--shard", args->shard,
+                  "Render only shard i of k (0-based; a contiguous block of frames) into the shared --out; "
+                  "defaults from Slurm array or Kubernetes Indexed Job variables")
+      ->type_name("i/k");
+  cmd->add_option("--shard-index", args->shardIndex, "Same as the i of --shard")->type_name("i");
+  cmd->add_option("--shard-count", args->shardCount, "Same as the k of --shard")->type_name("k");
+  cmd->add_flag("--resume", args->resume,
+                "Continue an interrupted run in --out: keep frames the manifest lists with matching files, redo the rest");
   cmd->footer(
       "Example:\n"
       "  sdgbehave run scenes/warehouse.yaml --frames 6 --seed 10 --out out/warehouse\n"
-      "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --seed 10 --no-render --record changes.jsonl");
+      "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --seed 10 --no-render --record changes.jsonl\n"
+      "  sdgbehave run scenes/warehouse.yaml --iterations 4 --frames 25 --shard 1/4 --out /shared/ds   # then: merge\n"
+      "  sdgbehave run scenes/warehouse.yaml --frames 600 --out out/big --resume   # after a crash");
   cmd->callback([args, &exitCode] {
     const auto loadStart = std::chrono::steady_clock::now();
     LoadedScene loaded = loadSceneForRun(SceneRequest{args->scene.scene, args->scene.overrides,
@@ -69,7 +106,8 @@ void addRun(CLI::App& app, int& exitCode) {
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;
-      options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
+      options.plan = framePlanFor(loaded.scene, *args);
+      options.resume = args->resume;
       options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));
       options.outDir = args->out.empty() ? "out/" + std::filesystem::path(args->scene.scene).stem().string() : args->out;
       options.overwrite = args->overwrite;
@@ -87,15 +125,26 @@ void addRun(CLI::App& app, int& exitCode) {
       std::string summary =
           makeRunSummary(RunSummaryInputs{versionText(), args->scene.scene, &loaded.scene, &options, &result, loadSeconds})
               .dump(2) + "\n";
-      writeFileAtomic((std::filesystem::path(options.outDir) / "run_summary.json").string(), summary);
+      // A shard's summary waits beside the others for `sdgbehave merge`.
+      const std::filesystem::path summaryPath =
+          options.plan.shard.sharded()
+              ? std::filesystem::path(options.outDir) / kPartsFolder / ("summary." + options.plan.shard.tag() + ".json")
+              : std::filesystem::path(options.outDir) / "run_summary.json";
+      writeFileAtomic(summaryPath.string(), summary);
       if (!args->summary.empty()) writeFileAtomic(args->summary, summary);
-      char line[256];
-      std::snprintf(line, sizeof line, "%llu frames, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s)",
-                    static_cast<unsigned long long>(result.frames), static_cast<unsigned long long>(result.files + 1),
-                    options.outDir.c_str(), loadSeconds + result.seconds,
-                    result.seconds > 0 ? double(result.frames) / result.seconds : 0.0, peakRssMb(),
-                    result.backend.c_str());
+      char line[320];
+      std::snprintf(line, sizeof line, "%llu frames%s, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s)",
+                    static_cast<unsigned long long>(result.frames),
+                    result.resumedFrames ? (" (" + std::to_string(result.resumedFrames) + " kept from before)").c_str() : "",
+                    static_cast<unsigned long long>(result.files + 1), options.outDir.c_str(),
+                    loadSeconds + result.seconds, result.seconds > 0 ? double(result.frames) / result.seconds : 0.0,
+                    peakRssMb(), result.backend.c_str());
       log::info(line);
+      if (options.plan.shard.sharded())
+        log::info("shard " + std::to_string(options.plan.shard.index) + " of " + std::to_string(options.plan.shard.count) +
+                  " done (frames " + std::to_string(options.plan.ownedBegin()) + " to " +
+                  std::to_string(options.plan.ownedEnd()) + "); when every shard is done: sdgbehave merge " +
+                  options.outDir);
       exitCode = kExitOk;
       return;
     }

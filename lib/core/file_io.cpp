@@ -11,7 +11,7 @@
 
 namespace sdg {
 
-void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes) {
+void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes, Durability durability) {
   std::string temporary = path + ".tmp-" + std::to_string(::getpid());
   int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw RunError("cannot write " + path + ": " + std::strerror(errno));
@@ -29,6 +29,7 @@ void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes) {
     }
     done += static_cast<size_t>(n);
   }
+  if (durability == Durability::Synced && ::fdatasync(fd) != 0) fail(errno);
   if (::close(fd) != 0) {
     int error = errno;
     ::unlink(temporary.c_str());
@@ -41,8 +42,18 @@ void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes) {
   }
 }
 
-void writeFileAtomic(const std::string& path, const std::string& text) {
-  writeFileAtomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+void writeFileAtomic(const std::string& path, const std::string& text, Durability durability) {
+  writeFileAtomic(path, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()),
+                  durability);
+}
+
+void syncDirectory(const std::string& dir) {
+  int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw RunError("cannot open the folder " + dir + ": " + std::strerror(errno));
+  int result = ::fsync(fd);
+  int error = errno;
+  ::close(fd);
+  if (result != 0 && error != EINVAL) throw RunError("cannot sync the folder " + dir + ": " + std::strerror(error));
 }
 
 }  // namespace sdg

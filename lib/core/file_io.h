@@ -9,7 +9,14 @@
 
 namespace sdg {
 
-void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes);
-void writeFileAtomic(const std::string& path, const std::string& text);
+// Synced: the bytes reach the disk (fdatasync) before the rename, so the
+// final name never points at lost data after a power cut; frames use it.
+enum class Durability { Flushed, Synced };
+
+void writeFileAtomic(const std::string& path, std::span<const uint8_t> bytes,
+                     Durability durability = Durability::Flushed);
+void writeFileAtomic(const std::string& path, const std::string& text, Durability durability = Durability::Flushed);
+// fsync of a folder, so renames in it are durable too.
+void syncDirectory(const std::string& dir);
 
 }  // namespace sdg

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <set>
 #include <thread>
@@ -11,15 +12,18 @@
 #include "core/file_io.h"
 #include "core/log.h"
 #include "render/renderer.h"
+#include "run/dataset_finalize.h"
 #include "run/preroll.h"
 #include "run/progress.h"
 #include "run/record.h"
+#include "run/run_summary.h"
 #include "run/scene_setup.h"
 #include "stage/path.h"
 #include "writers/basic_writer.h"
 #include "writers/coco_writer.h"
 #include "writers/contact_sheet.h"
 #include "writers/png_encoder.h"
+#include "writers/manifest.h"
 #include "writers/write_pool.h"
 
 namespace sdg {
@@ -27,31 +31,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void prepareOutputFolder(const std::string& dir, bool overwrite) {
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir, ec)) throw SceneError(SourceLoc{"--out", 0, 0}, dir + " exists and is not a folder");
-    if (!overwrite && !fs::is_empty(dir, ec))
-      throw SceneError(SourceLoc{"--out", 0, 0},
-                       dir + " is not empty; choose another folder or pass --overwrite to replace its files");
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw RunError("cannot create the output folder " + dir + ": " + ec.message());
-}
-
-void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
-  for (const OutputFile& file : files) {
-    fs::path path = fs::path(dir) / file.path;
-    std::error_code ec;
-    fs::create_directories(path.parent_path(), ec);
-    if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
-    writeFileAtomic(path.string(), file.bytes);
-  }
-}
-
 // A frame's thumbnail with the tight box and class of every visible entity.
-void addToSheet(ContactSheet& sheet, uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
-                const std::vector<Renderer::Coverage>& coverage) {
+std::vector<uint8_t> sheetTile(uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
+                               const std::vector<Renderer::Coverage>& coverage) {
   std::vector<SheetBox> boxes;
   for (size_t e = 0; e < semantics.entities.size() && e < coverage.size(); ++e) {
     const Renderer::Coverage& c = coverage[e];
@@ -61,7 +43,23 @@ void addToSheet(ContactSheet& sheet, uint64_t frame, const FramePasses& passes, 
     std::string label = cls != labels.end() ? cls->second : labels.empty() ? "" : labels.begin()->second;
     boxes.push_back({c.xMin, c.yMin, c.xMax, c.yMax, semantics.entities[e].semanticId, label});
   }
-  sheet.add(frame, passes.rgba, passes.width, passes.height, boxes);
+  return contactSheetTile(frame, passes.rgba, passes.width, passes.height, boxes);
+}
+
+// Owned frames of one iteration whose every product the manifest lists
+// with matching files.
+std::set<uint64_t> finishedFrames(const std::string& dir, size_t products) {
+  std::map<uint64_t, size_t> complete;
+  for (const ManifestEntry& e : readManifests(dir)) {
+    bool ok = true;
+    for (const ManifestFile& f : e.files)
+      ok = ok && sha256OfFile((fs::path(dir) / f.path).string()) == f.sha256;
+    if (ok) ++complete[e.frame];
+  }
+  std::set<uint64_t> done;
+  for (const auto& [frame, count] : complete)
+    if (count == products) done.insert(frame);
+  return done;
 }
 
 // renderSimulation: the colour image of every render product, one file per
@@ -84,7 +82,9 @@ void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vec
 }  // namespace
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const auto start = Clock::now();
   Scene& scene = loaded.scene;
   const SourceLoc sceneLoc{scene.sourcePath, 0, 0};
   const WriterConfig* writerConfig = nullptr;
@@ -112,135 +112,174 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     productNames.push_back(name);
   }
 
-  prepareOutputFolder(options.outDir, options.overwrite);
+  const FramePlan& plan = options.plan;
+  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
+  RunInfo info;
+  info.sceneHash = fileHash(scene.sourcePath);
+  info.seed = options.seed;
+  info.iterations = plan.iterations;
+  info.framesPerIteration = plan.framesPerIteration;
+  info.width = settings.width;
+  info.height = settings.height;
+  info.products = productNames;
+  if (cocoConfig) {
+    const auto& types = cocoConfig->options.get("semantic_types").get<std::vector<std::string>>();
+    info.cocoFile = cocoConfig->options.getString("file_name");
+    info.cocoTaxonomy = types.empty() ? std::string("class") : types.front();
+  }
+  info.contactSheet = scene.capture.get("contact_sheet").get<bool>();
+  info.shardCount = plan.shard.count;
+  prepareOutputFolder(options.outDir, info, FolderPolicy{options.overwrite, options.resume, plan.shard.sharded()});
+  DatasetRunResult result;
+  result.info = info;
+  std::set<uint64_t> finished;
+  if (options.resume) {
+    removeStaleTemporaries(options.outDir);
+    finished = finishedFrames(options.outDir, productNames.size());
+  }
   BasicWriter writer(writerConfig->options, productNames, options.seed);
   writeFiles(options.outDir, writer.metadataFiles());
+  ManifestWriter manifest(
+      (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
+          .string());
 
-  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
   std::unique_ptr<GlContext> context = createOsMesaContext();
   Renderer renderer(*context, loaded.assets, settings);
-
-  RunBehaviorSetup setup;
-  BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
-  DatasetRunResult result;
-  behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
-    writeSimulationFrame(stage, renderer, cameraPaths, productNames, options.outDir, result.simulationFrames++);
-  };
-  BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
-  runtime.init();
-  using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  auto t0 = Clock::now();
-  runPreroll(scene.events, runtime);
-  result.stages.preroll = since(t0);
-  result.settle = setup.reports;
-  if (!options.saveStagePath.empty()) saveStageAfterPreroll(loaded, options.saveStagePath);
-  std::unique_ptr<ChangeRecorder> recorder;
-  if (!options.recordPath.empty()) {
-    recorder = std::make_unique<ChangeRecorder>(options.recordPath, scene.stage);
-    recorder->recordPreroll(setup.reports);
-  }
+  result.renderer = context->rendererName();
+  result.backend = context->backend();
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   WritePool pool(threads, 2 * size_t(threads));
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
                                   ->options.get("semantic_types")
                                   .get<std::vector<std::string>>();
-  std::unique_ptr<CocoWriter> coco;
-  if (cocoConfig) {
-    const auto& types = cocoConfig->options.get("semantic_types").get<std::vector<std::string>>();
-    coco = std::make_unique<CocoWriter>(options.outDir, cocoConfig->options.getString("file_name"),
-                                        types.empty() ? std::string("class") : types.front());
-  }
-  result.renderer = context->rendererName();
-  result.backend = context->backend();
+  const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
-  Progress progress(options.frames, options.progress);
-  std::unique_ptr<ContactSheet> sheet;
-  if (scene.capture.get("contact_sheet").get<bool>()) sheet = std::make_unique<ContactSheet>(options.frames);
+  uint64_t owned = plan.ownedEnd() - plan.ownedBegin(), sequence = 0;
+  for (uint64_t f = plan.ownedBegin(); f < plan.ownedEnd(); ++f) result.resumedFrames += finished.count(f);
+  Progress progress(owned - result.resumedFrames, options.progress);
+  std::unique_ptr<ChangeRecorder> recorder;
+  const Stage original = scene.stage;
 
-  runtime.play();
-  for (uint64_t frame = 0; frame < options.frames; ++frame) {
-    t0 = Clock::now();
-    runtime.update();
-    result.stages.behaviors += since(t0);
-    if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
-    t0 = Clock::now();
-    RenderList list = buildRenderList(scene.stage);
-    FrameSemantics semantics = computeSemantics(scene.stage, list, semanticTypes);
-    std::vector<Eigen::AlignedBox3f> itemBounds;
-    itemBounds.reserve(list.items.size());
-    for (const RenderItem& item : list.items) itemBounds.push_back(renderer.meshBounds(item));
-    std::vector<std::vector<size_t>> groups;
-    for (const SemanticEntity& e : semantics.entities) groups.push_back(e.items);
+  for (uint64_t iteration = 0; iteration < plan.iterations; ++iteration) {
+    const uint64_t first = iteration * plan.framesPerIteration;
+    const uint64_t begin = std::max(first, plan.ownedBegin());
+    const uint64_t end = std::min(first + plan.framesPerIteration, plan.ownedEnd());
+    bool work = false;
+    for (uint64_t f = begin; f < end; ++f) work = work || !finished.count(f);
+    if (!work) continue;  // not ours, or all done: no pre-roll either
 
-    for (size_t product = 0; product < cameraPaths.size(); ++product) {
-      size_t cameraIndex = list.cameras.size();
-      for (size_t c = 0; c < list.cameras.size(); ++c)
-        if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
-      if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
-      auto job = std::make_shared<ProductFrame>();
-      job->frame = frame;
-      job->product = product;
-      job->camera = list.cameras[cameraIndex];
-      job->metersPerUnit = list.metersPerUnit;
-      auto renderStart = Clock::now();
-      renderer.render(list, cameraIndex, job->passes);
-      std::vector<Renderer::Coverage> coverage;
-      const bool toSheet = sheet && product == 0 && sheet->wants(frame);
-      if (writer.needsCoverage() || coco || toSheet) renderer.renderCoverage(list, cameraIndex, groups, coverage);
-      result.stages.render += since(renderStart);
-      auto annotateStart = Clock::now();
-      std::vector<EntityCoverage> entityCoverage;
-      for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-      annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
-               job->annotations);
-      for (const SemanticEntity& e : semantics.entities) {
-        job->entityPaths.push_back(e.primPath);
-        job->entityLabels.push_back(e.labels);
-      }
-      job->semanticLabels = semantics.semanticLabels;
-      if (coco)
-        coco->addFrame(writer.rgbPath(frame, product), job->passes.width, job->passes.height, job->annotations,
-                       semantics);
-      job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
-      for (const RenderItem& item : list.items)
-        if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
-      if (toSheet) addToSheet(*sheet, frame, job->passes, semantics, coverage);
-      result.stages.annotate += since(annotateStart);
-      const std::string outDir = options.outDir;
-      pool.submit([job, &writer, outDir, &files, &encodeMicros] {
-        auto start = Clock::now();
-        std::vector<OutputFile> encoded = writer.encode(*job);
-        writeFiles(outDir, encoded);
-        files += encoded.size();
-        encodeMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
-      });
+    scene.stage = original;
+    RunBehaviorSetup setup;
+    BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
+    behaviorContext.iteration = iteration;
+    behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
+      writeSimulationFrame(stage, renderer, cameraPaths, productNames, options.outDir, result.simulationFrames++);
+    };
+    BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
+    runtime.init();
+    auto t0 = Clock::now();
+    runPreroll(scene.events, runtime);
+    result.stages.preroll += since(t0);
+    ++result.iterationsRun;
+    for (nlohmann::ordered_json& report : setup.reports) {
+      report["iteration"] = iteration;
+      result.settle.push_back(report);
     }
-    log::debug("frame " + std::to_string(frame) + " rendered");
-    ++result.frames;
-    progress.update(result.frames);
+    if (!options.saveStagePath.empty() && result.iterationsRun == 1) saveStageAfterPreroll(loaded, options.saveStagePath);
+    if (!options.recordPath.empty() && !recorder) recorder = std::make_unique<ChangeRecorder>(options.recordPath, original);
+    if (recorder) recorder->recordPreroll(setup.reports, scene.stage);
+
+    runtime.play();
+    for (uint64_t frame = first; frame < end; ++frame) {
+      t0 = Clock::now();
+      runtime.update();
+      result.stages.behaviors += since(t0);
+      if (frame < begin || finished.count(frame)) continue;  // stepped, not rendered
+      if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
+      t0 = Clock::now();
+      RenderList list = buildRenderList(scene.stage);
+      FrameSemantics semantics = computeSemantics(scene.stage, list, semanticTypes);
+      std::vector<Eigen::AlignedBox3f> itemBounds;
+      itemBounds.reserve(list.items.size());
+      for (const RenderItem& item : list.items) itemBounds.push_back(renderer.meshBounds(item));
+      std::vector<std::vector<size_t>> groups;
+      for (const SemanticEntity& e : semantics.entities) groups.push_back(e.items);
+
+      for (size_t product = 0; product < cameraPaths.size(); ++product) {
+        size_t cameraIndex = list.cameras.size();
+        for (size_t c = 0; c < list.cameras.size(); ++c)
+          if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
+        if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
+        auto job = std::make_shared<ProductFrame>();
+        job->frame = frame;
+        job->product = product;
+        job->camera = list.cameras[cameraIndex];
+        job->metersPerUnit = list.metersPerUnit;
+        auto renderStart = Clock::now();
+        renderer.render(list, cameraIndex, job->passes);
+        std::vector<Renderer::Coverage> coverage;
+        const bool toSheet = product == 0 && sheetFrames.count(frame);
+        if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+        result.stages.render += since(renderStart);
+        auto annotateStart = Clock::now();
+        std::vector<EntityCoverage> entityCoverage;
+        for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+        annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
+                 job->annotations);
+        for (const SemanticEntity& e : semantics.entities) {
+          job->entityPaths.push_back(e.primPath);
+          job->entityLabels.push_back(e.labels);
+        }
+        job->semanticLabels = semantics.semanticLabels;
+        // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
+        auto parts = std::make_shared<std::vector<OutputFile>>();
+        if (cocoConfig) {
+          std::string text = cocoFragment(writer.rgbPath(frame, product), job->passes.width, job->passes.height,
+                                          job->annotations, semantics, info.cocoTaxonomy);
+          parts->push_back({cocoFragmentPath(frame, product), std::vector<uint8_t>(text.begin(), text.end())});
+        }
+        if (toSheet) parts->push_back({contactSheetTilePath(frame), sheetTile(frame, job->passes, semantics, coverage)});
+        job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
+        for (const RenderItem& item : list.items)
+          if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+        result.stages.annotate += since(annotateStart);
+        const std::string outDir = options.outDir;
+        pool.submit([job, parts, &writer, &manifest, outDir, &files, &encodeMicros, seq = sequence++] {
+          auto jobStart = Clock::now();
+          std::vector<OutputFile> encoded = writer.encode(*job);
+          const size_t datasetFiles = encoded.size();  // the hidden parts are not counted
+          for (OutputFile& part : *parts) encoded.push_back(std::move(part));
+          writeFilesDurably(outDir, encoded);
+          ManifestEntry entry{job->frame, uint32_t(job->product), {}};
+          for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
+          manifest.commit(seq, std::move(entry));
+          files += datasetFiles;
+          encodeMicros +=
+              uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - jobStart).count());
+        });
+      }
+      log::debug("frame " + std::to_string(frame) + " rendered");
+      ++result.frames;
+      progress.update(result.frames);
+    }
+    runtime.stop();
+    if (recorder) recorder->recordStop(scene.stage);
+    runtime.destroy();
   }
   progress.finish();
-  if (sheet && !sheet->empty()) {
-    writeFileAtomic((fs::path(options.outDir) / "contact_sheet.png").string(), sheet->encodePng());
-    ++files;
-  }
-  runtime.stop();
-  if (recorder) {
-    recorder->recordStop(scene.stage);
-    recorder->close();
-  }
-  runtime.destroy();
+  scene.stage = original;
+  if (recorder) recorder->close();
   pool.finish();
-  if (coco) {
-    coco->finish();
-    ++files;
+  uint64_t written = files + 1 + result.simulationFrames * cameraPaths.size();  // + metadata.txt, simulation
+  if (!plan.shard.sharded()) {
+    written += finalizeDataset(options.outDir, info).files;
+    result.finalized = true;
   }
-  result.files = files + 1 + result.simulationFrames * cameraPaths.size();  // metadata.txt, simulation frames
+  result.files = written;
   result.stages.encodeWrite = double(encodeMicros) / 1e6;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }
 

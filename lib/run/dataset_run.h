@@ -1,20 +1,27 @@
 #pragma once
-// A run with pixels: pre-roll, play, and per frame one update, a render of
-// every camera (render product), the annotators, and the writer's files
-// encoded and written on a background pool while the next frame renders.
+// A run with pixels. Per iteration: a fresh copy of the stage, the pre-roll,
+// play, and per frame one update, a render of every camera (render
+// product), the annotators, and the writer's files encoded and written on a
+// background pool while the next frame renders. Behaviors step through
+// every update of an iteration; only frames this shard owns (and, with
+// --resume, has not finished) are rendered, so every frame's bytes depend
+// only on (scene, seed, iteration, frame) and shards add up to the whole.
 #include <cstdint>
 #include <optional>
 #include <string>
 
+#include "run/frame_plan.h"
+#include "run/output_folder.h"
 #include "run/scene_setup.h"
 
 namespace sdg {
 
 struct DatasetRunOptions {
-  uint64_t frames = 1;
+  FramePlan plan;
   int64_t seed = 0;
   std::string outDir;
   bool overwrite = false;
+  bool resume = false;  // keep frames the manifest lists whose files still match
   unsigned threads = 0;  // 0 = one per core
   std::optional<int> width, height, subframes;
   std::string recordPath;
@@ -29,7 +36,11 @@ struct StageTimes {
 };
 
 struct DatasetRunResult {
-  uint64_t frames = 0;
+  uint64_t frames = 0;         // frames rendered by this process
+  uint64_t resumedFrames = 0;  // owned frames kept from an earlier run
+  uint64_t iterationsRun = 0;  // pre-rolls this process ran
+  bool finalized = false;      // COCO, contact sheet and manifest written (not for shards)
+  RunInfo info;
   uint64_t files = 0;
   std::string renderer;
   std::string backend;

@@ -47,12 +47,11 @@ void ChangeRecorder::recordFrame(uint64_t frame, double time, const Stage& now) 
   writeLine(head.dump(), now);
 }
 
-void ChangeRecorder::recordPreroll(const std::vector<nlohmann::ordered_json>& settle) {
+void ChangeRecorder::recordPreroll(const std::vector<nlohmann::ordered_json>& settle, const Stage& now) {
   nlohmann::ordered_json head;
   head["event"] = "preroll";
   head["settle"] = settle;
-  head["changes"] = nlohmann::ordered_json::array();  // the record starts from the stage after the pre-roll
-  writeText(head.dump() + "\n");
+  writeLine(head.dump(), now);
 }
 
 void ChangeRecorder::recordStop(const Stage& now) { writeLine(R"({"event": "stop"})", now); }

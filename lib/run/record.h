@@ -22,8 +22,9 @@ class ChangeRecorder {
   ChangeRecorder(const ChangeRecorder&) = delete;
   ChangeRecorder& operator=(const ChangeRecorder&) = delete;
 
-  // The first line: {"event": "preroll", "settle": [...]}.
-  void recordPreroll(const std::vector<nlohmann::ordered_json>& settle);
+  // After each pre-roll: {"event": "preroll", "settle": [...], "changes":
+  // what the pre-roll changed (e.g. the stacked assets)}.
+  void recordPreroll(const std::vector<nlohmann::ordered_json>& settle, const Stage& now);
   void recordFrame(uint64_t frame, double time, const Stage& now);
   void recordStop(const Stage& now);
   // Flushes and closes; a write error throws RunError naming the file.

@@ -38,6 +38,13 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
   j["scene_hash"] = fileHash(in.scenePath);
   j["seed"] = o.seed;
   j["frames"] = r.frames;
+  j["frames_resumed"] = r.resumedFrames;
+  j["frames_in_run"] = o.plan.total();
+  j["iterations"] = o.plan.iterations;
+  j["frames_per_iteration"] = o.plan.framesPerIteration;
+  j["shard"] = {{"index", o.plan.shard.index}, {"count", o.plan.shard.count},
+                {"first_frame", o.plan.ownedBegin()}, {"end_frame", o.plan.ownedEnd()}};
+  j["pre_rolls"] = r.iterationsRun;
   j["output"] = o.outDir;
   j["files_written"] = r.files;
   j["renderer"] = {{"backend", r.backend}, {"gl_renderer", r.renderer}};

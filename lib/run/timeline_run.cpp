@@ -12,6 +12,7 @@ namespace sdg {
 
 TimelineRunResult runTimeline(LoadedScene& loaded, const TimelineRunOptions& options) {
   Stage& stage = loaded.scene.stage;
+  const Stage original = stage;
   RunBehaviorSetup setup;
   BehaviorRuntime runtime(stage, loaded.registry, behaviorContextFor(loaded, options.seed, setup));
   runtime.init();
@@ -21,8 +22,8 @@ TimelineRunResult runTimeline(LoadedScene& loaded, const TimelineRunOptions& opt
   const Stage beforePlay = stage;
   std::unique_ptr<ChangeRecorder> recorder;
   if (!options.recordPath.empty()) {
-    recorder = std::make_unique<ChangeRecorder>(options.recordPath, beforePlay);
-    recorder->recordPreroll(setup.reports);
+    recorder = std::make_unique<ChangeRecorder>(options.recordPath, original);
+    recorder->recordPreroll(setup.reports, stage);
   }
 
   TimelineRunResult result;

@@ -48,7 +48,12 @@ const std::vector<AttributeSpec>& captureSpecs() {
   static const std::vector<AttributeSpec> specs = {
       option("cameras", Value::makeStringArray({}),
              "Camera prims to render, one render product each; empty means every Camera prim of the stage."),
-      option("frames", Value::makeUInt(1), "Number of frames to capture."),
+      option("frames", Value::makeUInt(1), "Number of frames to capture (per iteration; --frames overrides)."),
+      atLeast(1, option("iterations", Value::makeUInt(1),
+                        "Independent repetitions: each re-runs the pre-roll (fresh stacks) with random streams derived "
+                        "from (seed, iteration), then captures its frames; frame numbers continue (--iterations)."))
+      ,
+      option("frames_per_iteration", Value::makeUInt(0), "Frames per iteration; 0 means `frames`."),
       option("seed", Value::makeInt(0), "Run seed; every random stream is derived from it (--seed overrides)."),
       option("contact_sheet", Value::makeBool(true),
              "Write <out>/contact_sheet.png: up to 36 frames of the first camera with boxes and class names."),

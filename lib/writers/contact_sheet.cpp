@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "assets/image.h"
 #include "writers/colors.h"
 #include "writers/png_encoder.h"
 
@@ -94,18 +95,28 @@ struct Canvas {
   }
 };
 
-}  // namespace
-
-ContactSheet::ContactSheet(uint64_t frames, int tileWidth, size_t maxTiles) : tileWidth_(tileWidth) {
-  const uint64_t n = std::min<uint64_t>(frames, maxTiles);
-  for (uint64_t i = 0; i < n; ++i) chosen_.insert(i * frames / n);
+std::vector<uint8_t> encodeRgb(const std::vector<uint8_t>& rgb, int width, int height) {
+  std::vector<uint8_t> rgba(size_t(width) * size_t(height) * 4, 255);
+  for (size_t p = 0; p < size_t(width) * size_t(height); ++p) std::copy_n(&rgb[p * 3], 3, &rgba[p * 4]);
+  return encodePng(rgba, uint32_t(width), uint32_t(height), PngPixels::Rgba8);
 }
 
-void ContactSheet::add(uint64_t frame, const std::vector<uint8_t>& rgba, int width, int height,
-                       const std::vector<SheetBox>& boxes) {
-  Tile tile;
-  tile.frame = frame;
-  tile.width = std::min(tileWidth_, width);
+}  // namespace
+
+std::set<uint64_t> contactSheetFrames(uint64_t frames, size_t maxTiles) {
+  std::set<uint64_t> chosen;
+  const uint64_t n = std::min<uint64_t>(frames, maxTiles);
+  for (uint64_t i = 0; i < n; ++i) chosen.insert(i * frames / n);
+  return chosen;
+}
+
+std::vector<uint8_t> contactSheetTile(uint64_t frame, const std::vector<uint8_t>& rgba, int width, int height,
+                                      const std::vector<SheetBox>& boxes, int tileWidth) {
+  struct {
+    int width, height;
+    std::vector<uint8_t> rgb;
+  } tile;
+  tile.width = std::min(tileWidth, width);
   tile.height = std::max(1, int(std::lround(double(height) * tile.width / width)));
   tile.rgb.assign(size_t(tile.width) * size_t(tile.height) * 3, 0);
   // Box filter: each thumbnail pixel averages the frame pixels it covers.
@@ -149,27 +160,36 @@ void ContactSheet::add(uint64_t frame, const std::vector<uint8_t>& rgba, int wid
   char number[24];
   std::snprintf(number, sizeof number, "%04llu", static_cast<unsigned long long>(frame));
   canvas.text(2, tile.height - 5 * kGlyphScale - 2, number, {255, 255, 255});
-  tiles_.push_back(std::move(tile));
+  return encodeRgb(tile.rgb, tile.width, tile.height);
 }
 
-std::vector<uint8_t> ContactSheet::encodePng() const {
-  const size_t n = tiles_.size();
+std::vector<uint8_t> composeContactSheet(const std::vector<std::string>& tileFiles) {
+  struct Tile {
+    int width, height;
+    std::vector<uint8_t> rgb;
+  };
+  std::vector<Tile> tiles;
+  for (const std::string& file : tileFiles) {
+    ImageRgba8 image = loadPng(file);
+    Tile t{int(image.width), int(image.height), std::vector<uint8_t>(size_t(image.width) * image.height * 3)};
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p) std::copy_n(&image.pixels[p * 4], 3, &t.rgb[p * 3]);
+    tiles.push_back(std::move(t));
+  }
+  const size_t n = tiles.size();
   const int columns = std::max(1, int(std::ceil(std::sqrt(double(n)))));
   const int rows = int((n + size_t(columns) - 1) / size_t(columns));
   int cellW = 1, cellH = 1;
-  for (const Tile& t : tiles_) cellW = std::max(cellW, t.width), cellH = std::max(cellH, t.height);
+  for (const Tile& t : tiles) cellW = std::max(cellW, t.width), cellH = std::max(cellH, t.height);
   const int width = columns * cellW + (columns + 1) * kGap, height = rows * cellH + (rows + 1) * kGap;
   std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3, 40);
   for (size_t i = 0; i < n; ++i) {
-    const Tile& t = tiles_[i];
+    const Tile& t = tiles[i];
     int ox = kGap + int(i % size_t(columns)) * (cellW + kGap), oy = kGap + int(i / size_t(columns)) * (cellH + kGap);
     for (int y = 0; y < t.height; ++y)
       std::copy_n(t.rgb.begin() + ptrdiff_t(size_t(y) * size_t(t.width) * 3), size_t(t.width) * 3,
                   rgb.begin() + ptrdiff_t((size_t(oy + y) * size_t(width) + size_t(ox)) * 3));
   }
-  std::vector<uint8_t> rgba(size_t(width) * size_t(height) * 4, 255);
-  for (size_t p = 0; p < size_t(width) * size_t(height); ++p) std::copy_n(&rgb[p * 3], 3, &rgba[p * 4]);
-  return sdg::encodePng(rgba, uint32_t(width), uint32_t(height), PngPixels::Rgba8);
+  return encodeRgb(rgb, width, height);
 }
 
 }  // namespace sdg

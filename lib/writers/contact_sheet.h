@@ -1,9 +1,10 @@
 #pragma once
 // contact_sheet.png: a grid of thumbnails of the captured frames (the first
 // render product) with each labelled entity's tight box and class name
-// drawn, so a user sees the dataset at a glance. At most `maxTiles` frames,
-// spread evenly over the run; frames are added in order on one thread, so
-// the sheet's bytes depend only on the frames.
+// drawn, so a user sees the dataset at a glance. At most 36 frames, spread
+// evenly over the run. Each thumbnail is its own small PNG written with its
+// frame; the grid is composed from those files at the end, so a whole run,
+// a resumed one and merged shards give the same sheet.
 #include <cstdint>
 #include <set>
 #include <string>
@@ -17,25 +18,18 @@ struct SheetBox {
   std::string label;
 };
 
-class ContactSheet {
- public:
-  ContactSheet(uint64_t frames, int tileWidth = 256, size_t maxTiles = 36);
+inline constexpr size_t kContactSheetTiles = 36;
+inline constexpr int kContactSheetTileWidth = 256;
 
-  bool wants(uint64_t frame) const { return chosen_.count(frame) != 0; }
-  // `rgba`: width x height, 4 bytes per pixel, rows top to bottom.
-  void add(uint64_t frame, const std::vector<uint8_t>& rgba, int width, int height, const std::vector<SheetBox>& boxes);
-  bool empty() const { return tiles_.empty(); }
-  std::vector<uint8_t> encodePng() const;
+// The frames the sheet shows for a run of `frames` frames.
+std::set<uint64_t> contactSheetFrames(uint64_t frames, size_t maxTiles = kContactSheetTiles);
 
- private:
-  struct Tile {
-    uint64_t frame;
-    int width, height;
-    std::vector<uint8_t> rgb;
-  };
-  std::set<uint64_t> chosen_;
-  int tileWidth_;
-  std::vector<Tile> tiles_;
-};
+// One thumbnail with boxes, labels and the frame number, as PNG bytes.
+// `rgba`: width x height, 4 bytes per pixel, rows top to bottom.
+std::vector<uint8_t> contactSheetTile(uint64_t frame, const std::vector<uint8_t>& rgba, int width, int height,
+                                      const std::vector<SheetBox>& boxes, int tileWidth = kContactSheetTileWidth);
+
+// The grid of the tiles (PNG files, in frame order) as PNG bytes.
+std::vector<uint8_t> composeContactSheet(const std::vector<std::string>& tileFiles);
 
 }  // namespace sdg

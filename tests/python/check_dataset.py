@@ -193,7 +193,7 @@ def main():
         check(not glob.glob(f"{tmp}/one/**/*.tmp-*", recursive=True), "temporary files left behind")
         for x in ("0000", "0001", "0002"):
             check_frame(f"{tmp}/one", x)
-        check(len(one) == 1 + 3 * 29 + 1 + 1, f"{len(one)} files")  # metadata, 29 per frame, COCO, contact sheet
+        check(len(one) == 1 + 3 * 29 + 3, f"{len(one)} files")  # metadata, 29 per frame, COCO, contact sheet, manifest
         check_coco(f"{tmp}/one")
         summary = json.load(open(f"{tmp}/one/run_summary.json"))
         check(summary["frames"] == 3 and summary["seed"] == 4 and summary["files_written"] == len(one),

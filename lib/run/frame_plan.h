@@ -1,0 +1,45 @@
+#pragma once
+// Which frames a run captures and which of them this process owns.
+// Frames are numbered 0 .. iterations x framesPerIteration - 1 across
+// iterations; shard i of k owns the contiguous block
+// [total * i / k, total * (i + 1) / k), so a shard touches as few iterations
+// (pre-rolls) as possible and a shard with an empty block has nothing to do.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace sdg {
+
+struct ShardSpec {
+  uint64_t index = 0;
+  uint64_t count = 1;
+  bool sharded() const { return count > 1; }
+  // "shard-2-of-4", used in file names.
+  std::string tag() const;
+};
+
+struct FramePlan {
+  uint64_t iterations = 1;
+  uint64_t framesPerIteration = 1;
+  ShardSpec shard;
+
+  uint64_t total() const { return iterations * framesPerIteration; }
+  uint64_t ownedBegin() const { return total() * shard.index / shard.count; }
+  uint64_t ownedEnd() const { return total() * (shard.index + 1) / shard.count; }
+  bool owns(uint64_t frame) const { return frame >= ownedBegin() && frame < ownedEnd(); }
+};
+
+// The shard from the flags, else from the scheduler's environment: Slurm
+// job arrays (SLURM_ARRAY_TASK_ID/_MIN/_STEP/_COUNT; unevenly spaced arrays
+// are refused), then Kubernetes Indexed Jobs (JOB_COMPLETION_INDEX, with the
+// count from --shard-count). Throws SceneError (exit 2) for inconsistent
+// input, naming the variable or flag.
+using EnvLookup = std::function<std::optional<std::string>(const char*)>;
+ShardSpec resolveShard(std::optional<uint64_t> flagIndex, std::optional<uint64_t> flagCount, const EnvLookup& env);
+// "i/k" as given to --shard.
+std::pair<uint64_t, uint64_t> parseShardFlag(const std::string& text);
+// getenv as an EnvLookup.
+std::optional<std::string> processEnvironment(const char* name);
+
+}  // namespace sdg

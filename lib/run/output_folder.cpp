@@ -1,0 +1,143 @@
+#include "run/output_folder.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/file_io.h"
+
+namespace sdg {
+namespace fs = std::filesystem;
+
+namespace {
+
+const SourceLoc kOut{"--out", 0, 0};
+
+std::string runInfoPath(const std::string& dir) { return (fs::path(dir) / kPartsFolder / "run.json").string(); }
+
+void createParent(const fs::path& path) {
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
+}
+
+}  // namespace
+
+nlohmann::ordered_json RunInfo::toJson() const {
+  nlohmann::ordered_json j;
+  j["format"] = 1;
+  j["scene_hash"] = sceneHash;
+  j["seed"] = seed;
+  j["iterations"] = iterations;
+  j["frames_per_iteration"] = framesPerIteration;
+  j["resolution"] = {width, height};
+  j["products"] = products;
+  j["coco_file"] = cocoFile;
+  j["coco_taxonomy"] = cocoTaxonomy;
+  j["contact_sheet"] = contactSheet;
+  j["shard_count"] = shardCount;
+  return j;
+}
+
+RunInfo RunInfo::fromJson(const nlohmann::json& j) {
+  RunInfo info;
+  info.sceneHash = j.at("scene_hash").get<std::string>();
+  info.seed = j.at("seed").get<int64_t>();
+  info.iterations = j.at("iterations").get<uint64_t>();
+  info.framesPerIteration = j.at("frames_per_iteration").get<uint64_t>();
+  info.width = j.at("resolution").at(0).get<int>();
+  info.height = j.at("resolution").at(1).get<int>();
+  info.products = j.at("products").get<std::vector<std::string>>();
+  info.cocoFile = j.at("coco_file").get<std::string>();
+  info.cocoTaxonomy = j.at("coco_taxonomy").get<std::string>();
+  info.contactSheet = j.at("contact_sheet").get<bool>();
+  info.shardCount = j.at("shard_count").get<uint64_t>();
+  return info;
+}
+
+RunInfo readRunInfo(const std::string& dir) {
+  std::ifstream in(runInfoPath(dir));
+  if (!in) throw RunError(dir + " holds no sdgbehave run (" + runInfoPath(dir) + " is missing)");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  try {
+    if (j.is_discarded()) throw nlohmann::json::other_error::create(0, "not JSON", nullptr);
+    return RunInfo::fromJson(j);
+  } catch (const nlohmann::json::exception&) {
+    throw RunError(runInfoPath(dir) + " is corrupt");
+  }
+}
+
+void prepareOutputFolder(const std::string& dir, const RunInfo& info, const FolderPolicy& policy) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw SceneError(kOut, dir + " exists and is not a folder");
+  const bool empty = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
+  if (!empty) {
+    const bool hasRun = fs::exists(runInfoPath(dir), ec);
+    if (policy.overwrite) {
+      if (policy.sharded)
+        throw SceneError(kOut, "--overwrite cannot be used with shards (one shard would delete another's files); "
+                               "empty " + dir + " first, or use --resume");
+      // The old run's bookkeeping goes; its data files are replaced as frames are written.
+      fs::remove_all(fs::path(dir) / kPartsFolder, ec);
+      for (const auto& e : fs::directory_iterator(dir, ec))
+        if (e.path().filename().string().rfind("manifest", 0) == 0) fs::remove(e.path(), ec);
+    } else if (hasRun && (policy.resume || policy.sharded)) {
+      RunInfo existing = readRunInfo(dir);
+      if (!(existing == info))
+        throw SceneError(kOut, dir + " holds a different run (" + existing.toJson().dump() +
+                                   "); use the same scene, seed, flags and shard count, or another folder");
+    } else {
+      throw SceneError(kOut, dir + " is not empty; choose another folder, pass --overwrite to replace its files" +
+                                 std::string(hasRun ? ", or --resume to finish the run it holds" : ""));
+    }
+  }
+  fs::create_directories(fs::path(dir) / kPartsFolder, ec);
+  if (ec) throw RunError("cannot create the output folder " + dir + ": " + ec.message());
+  writeFileAtomic(runInfoPath(dir), info.toJson().dump(2) + "\n");
+}
+
+void removeStaleTemporaries(const std::string& dir) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); it.increment(ec))
+    if (it->is_regular_file(ec) && it->path().filename().string().find(".tmp-") != std::string::npos)
+      fs::remove(it->path(), ec);
+}
+
+std::string cocoFragmentPath(uint64_t frame, size_t product) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s/coco/%012llu_%03zu.json", kPartsFolder, static_cast<unsigned long long>(frame),
+                product);
+  return name;
+}
+
+std::string contactSheetTilePath(uint64_t frame) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s/contact_sheet/%012llu.png", kPartsFolder, static_cast<unsigned long long>(frame));
+  return name;
+}
+
+void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files) {
+  std::set<std::string> folders;
+  for (const OutputFile& file : files) {
+    fs::path path = fs::path(dir) / file.path;
+    createParent(path);
+    writeFileAtomic(path.string(), file.bytes, Durability::Synced);
+    folders.insert(path.parent_path().string());
+  }
+  for (const std::string& folder : folders) syncDirectory(folder);
+}
+
+void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
+  for (const OutputFile& file : files) {
+    fs::path path = fs::path(dir) / file.path;
+    createParent(path);
+    writeFileAtomic(path.string(), file.bytes);
+  }
+}
+
+}  // namespace sdg

@@ -1,0 +1,59 @@
+#pragma once
+// The output folder of a dataset run: who may write into it, the run
+// description every shard shares (.sdgbehave/run.json), the hidden parts a
+// frame writes besides the dataset's own files (COCO fragments, contact
+// sheet tiles), and durable writes of a frame's files.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "writers/basic_writer.h"
+
+namespace sdg {
+
+inline constexpr const char* kPartsFolder = ".sdgbehave";
+
+// What every process writing into one folder must agree on.
+struct RunInfo {
+  std::string sceneHash;
+  int64_t seed = 0;
+  uint64_t iterations = 1;
+  uint64_t framesPerIteration = 1;
+  int width = 0, height = 0;
+  std::vector<std::string> products;
+  std::string cocoFile;      // "" without a COCO writer
+  std::string cocoTaxonomy;
+  bool contactSheet = true;
+  uint64_t shardCount = 1;
+
+  uint64_t frames() const { return iterations * framesPerIteration; }
+  nlohmann::ordered_json toJson() const;
+  static RunInfo fromJson(const nlohmann::json& j);
+  bool operator==(const RunInfo&) const = default;
+};
+
+struct FolderPolicy {
+  bool overwrite = false;  // replace an earlier run's files
+  bool resume = false;     // keep the frames an earlier run finished
+  bool sharded = false;    // other shards of this run may write here too
+};
+
+// Creates the folder or checks that this run may use it, then records
+// `info` (SceneError for a folder holding something else, exit 2).
+void prepareOutputFolder(const std::string& dir, const RunInfo& info, const FolderPolicy& policy);
+RunInfo readRunInfo(const std::string& dir);  // RunError when absent or corrupt
+// Temporary files a killed run left behind ("*.tmp-<pid>").
+void removeStaleTemporaries(const std::string& dir);
+
+std::string cocoFragmentPath(uint64_t frame, size_t product);  // relative
+std::string contactSheetTilePath(uint64_t frame);              // relative
+
+// Writes files (paths relative to `dir`) durably: data synced before each
+// rename, then the folders synced.
+void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files);
+// Writes files atomically without syncing (e.g. metadata, simulation frames).
+void writeFiles(const std::string& dir, const std::vector<OutputFile>& files);
+
+}  // namespace sdg

@@ -1,0 +1,181 @@
+#include "writers/manifest.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+#include <openssl/evp.h>
+
+#include "core/diagnostics.h"
+#include "core/file_io.h"
+
+namespace sdg {
+namespace fs = std::filesystem;
+
+namespace {
+
+class Sha256 {
+ public:
+  Sha256() : ctx_(EVP_MD_CTX_new()) {
+    if (!ctx_ || EVP_DigestInit_ex(ctx_, EVP_sha256(), nullptr) != 1) throw RunError("libcrypto: SHA-256 unavailable");
+  }
+  ~Sha256() { EVP_MD_CTX_free(ctx_); }
+  Sha256(const Sha256&) = delete;
+  Sha256& operator=(const Sha256&) = delete;
+  void update(const void* data, size_t size) { EVP_DigestUpdate(ctx_, data, size); }
+  std::string hex() {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    EVP_DigestFinal_ex(ctx_, digest, &size);
+    static const char* digits = "0123456789abcdef";
+    std::string out;
+    for (unsigned i = 0; i < size; ++i) out += digits[digest[i] >> 4], out += digits[digest[i] & 15];
+    return out;
+  }
+
+ private:
+  EVP_MD_CTX* ctx_;
+};
+
+bool parseLine(const std::string& line, ManifestEntry& entry) {
+  nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("frame") || !j.contains("files")) return false;
+  try {
+    entry.frame = j.at("frame").get<uint64_t>();
+    entry.product = j.value("product", 0u);
+    entry.files.clear();
+    for (const auto& f : j.at("files"))
+      entry.files.push_back({f.at("path").get<std::string>(), f.at("bytes").get<uint64_t>(),
+                             f.at("sha256").get<std::string>()});
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string sha256Hex(std::span<const uint8_t> bytes) {
+  Sha256 h;
+  h.update(bytes.data(), bytes.size());
+  return h.hex();
+}
+
+std::string sha256OfFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  Sha256 h;
+  std::vector<char> buffer(1 << 16);
+  while (in) {
+    in.read(buffer.data(), std::streamsize(buffer.size()));
+    h.update(buffer.data(), size_t(in.gcount()));
+  }
+  return h.hex();
+}
+
+std::string ManifestEntry::toLine() const {
+  nlohmann::ordered_json j;
+  j["frame"] = frame;
+  j["product"] = product;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const ManifestFile& f : files) list.push_back({{"path", f.path}, {"bytes", f.bytes}, {"sha256", f.sha256}});
+  j["files"] = std::move(list);
+  return j.dump() + "\n";
+}
+
+ManifestWriter::ManifestWriter(std::string path) : path_(std::move(path)) {
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+  // A crash during an append can leave a line without its newline: cut it,
+  // its frame is simply redone.
+  off_t size = ::lseek(fd_, 0, SEEK_END);
+  off_t keep = size;
+  char c = 0;
+  while (keep > 0 && ::pread(fd_, &c, 1, keep - 1) == 1 && c != '\n') --keep;
+  if (keep != size && ::ftruncate(fd_, keep) != 0)
+    throw RunError("cannot repair the manifest " + path_ + ": " + std::strerror(errno));
+}
+
+ManifestWriter::~ManifestWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void ManifestWriter::commit(uint64_t sequence, ManifestEntry entry) {
+  std::lock_guard lock(mutex_);
+  pending_.emplace(sequence, std::move(entry));
+  for (auto it = pending_.find(next_); it != pending_.end(); it = pending_.find(next_)) {
+    append(it->second);
+    pending_.erase(it);
+    ++next_;
+  }
+}
+
+void ManifestWriter::append(const ManifestEntry& entry) {
+  const std::string line = entry.toLine();
+  if (::write(fd_, line.data(), line.size()) != ssize_t(line.size()) || ::fdatasync(fd_) != 0)
+    throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+}
+
+std::vector<ManifestEntry> readManifests(const std::string& dir) {
+  std::map<std::pair<uint64_t, uint32_t>, ManifestEntry> byKey;
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("manifest", 0) == 0 && e.path().extension() == ".jsonl") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) {
+    std::ifstream in(file);
+    std::string line;
+    while (std::getline(in, line)) {
+      ManifestEntry entry;
+      if (parseLine(line, entry)) byKey[{entry.frame, entry.product}] = std::move(entry);
+    }
+  }
+  std::vector<ManifestEntry> out;
+  for (auto& [key, entry] : byKey) out.push_back(std::move(entry));
+  return out;
+}
+
+void writeCanonicalManifest(const std::string& dir, const std::vector<ManifestEntry>& entries) {
+  std::string text;
+  for (const ManifestEntry& e : entries) text += e.toLine();
+  writeFileAtomic((fs::path(dir) / "manifest.jsonl").string(), text);
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("manifest.", 0) == 0 && name != "manifest.jsonl" && e.path().extension() == ".jsonl")
+      fs::remove(e.path(), ec);
+  }
+}
+
+VerifyReport verifyManifest(const std::string& dir, const std::vector<ManifestEntry>& entries) {
+  VerifyReport report;
+  for (const ManifestEntry& e : entries)
+    for (const ManifestFile& f : e.files) {
+      ++report.files;
+      const std::string path = (fs::path(dir) / f.path).string();
+      std::error_code ec;
+      if (!fs::exists(path, ec)) {
+        report.problems.push_back(f.path + ": missing");
+        continue;
+      }
+      if (fs::file_size(path, ec) != f.bytes) {
+        report.problems.push_back(f.path + ": " + std::to_string(fs::file_size(path, ec)) + " bytes, the manifest says " +
+                                  std::to_string(f.bytes));
+        continue;
+      }
+      if (sha256OfFile(path) != f.sha256) report.problems.push_back(f.path + ": sha256 differs from the manifest");
+    }
+  return report;
+}
+
+}  // namespace sdg
