@@ -36,5 +36,7 @@ void addSchema(CLI::App& app, int& exitCode);
 void addDescribe(CLI::App& app, int& exitCode);
 void addRun(CLI::App& app, int& exitCode);
 void addRender(CLI::App& app, int& exitCode);
+void addVerify(CLI::App& app, int& exitCode);
+void addMerge(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

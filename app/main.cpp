@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
   cli::addDescribe(app, exitCode);
   cli::addRun(app, exitCode);
   cli::addRender(app, exitCode);
+  cli::addVerify(app, exitCode);
+  cli::addMerge(app, exitCode);
 
   // Logging must be configured before subcommand callbacks run.
   app.parse_complete_callback([&] {

@@ -128,7 +128,6 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     info.cocoTaxonomy = types.empty() ? std::string("class") : types.front();
   }
   info.contactSheet = scene.capture.get("contact_sheet").get<bool>();
-  info.shardCount = plan.shard.count;
   prepareOutputFolder(options.outDir, info, FolderPolicy{options.overwrite, options.resume, plan.shard.sharded()});
   DatasetRunResult result;
   result.info = info;

@@ -38,7 +38,6 @@ nlohmann::ordered_json RunInfo::toJson() const {
   j["coco_file"] = cocoFile;
   j["coco_taxonomy"] = cocoTaxonomy;
   j["contact_sheet"] = contactSheet;
-  j["shard_count"] = shardCount;
   return j;
 }
 
@@ -54,7 +53,6 @@ RunInfo RunInfo::fromJson(const nlohmann::json& j) {
   info.cocoFile = j.at("coco_file").get<std::string>();
   info.cocoTaxonomy = j.at("coco_taxonomy").get<std::string>();
   info.contactSheet = j.at("contact_sheet").get<bool>();
-  info.shardCount = j.at("shard_count").get<uint64_t>();
   return info;
 }
 
@@ -90,7 +88,7 @@ void prepareOutputFolder(const std::string& dir, const RunInfo& info, const Fold
       RunInfo existing = readRunInfo(dir);
       if (!(existing == info))
         throw SceneError(kOut, dir + " holds a different run (" + existing.toJson().dump() +
-                                   "); use the same scene, seed, flags and shard count, or another folder");
+                                   "); use the same scene, seed and flags, or another folder");
     } else {
       throw SceneError(kOut, dir + " is not empty; choose another folder, pass --overwrite to replace its files" +
                                  std::string(hasRun ? ", or --resume to finish the run it holds" : ""));

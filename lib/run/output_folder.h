@@ -26,7 +26,8 @@ struct RunInfo {
   std::string cocoFile;      // "" without a COCO writer
   std::string cocoTaxonomy;
   bool contactSheet = true;
-  uint64_t shardCount = 1;
+  // No shard count: frames depend only on (scene, seed, iteration, frame),
+  // so shards of different counts still write the same bytes.
 
   uint64_t frames() const { return iterations * framesPerIteration; }
   nlohmann::ordered_json toJson() const;
