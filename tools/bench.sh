@@ -57,6 +57,37 @@ print(json.dumps({"name": f"sdgbehave run scenes/warehouse.yaml, {frames} frames
 PY
 done
 rm -rf "$out"
+# Shards: the demo's 60 frames as 1 shard, then as 2 shards running at once
+# into one folder; and what a shard pays before its first frame.
+/usr/bin/python3 - "$bin" "$out" >> "$lines" <<'PY'
+import json, subprocess, sys, time, shutil
+binary, out = sys.argv[1], sys.argv[2]
+def timed(shards):
+    shutil.rmtree(out, ignore_errors=True)
+    start = time.perf_counter()
+    procs = [subprocess.Popen([binary, "run", "scenes/warehouse.yaml", "--frames", "60", "--out", out,
+                               "--threads", str(max(1, 2 // shards)), *(["--shard", f"{i}/{shards}"] if shards > 1 else [])],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) for i in range(shards)]
+    assert all(p.wait() == 0 for p in procs)
+    if shards > 1:
+        subprocess.run([binary, "merge", out], check=True, capture_output=True)
+    return time.perf_counter() - start
+for shards in (1, 2):
+    runs = sorted(timed(shards) for _ in range(3))
+    print(json.dumps({"name": f"demo, 60 frames at 512x512 as {shards} concurrent shard(s) (+ merge)", "unit": "s",
+                      "median": round(runs[1], 3), "min": round(runs[0], 3), "max": round(runs[2], 3),
+                      "fps": round(60 / runs[1], 1)}))
+costs = []
+for _ in range(5):
+    shutil.rmtree(out, ignore_errors=True)
+    subprocess.run([binary, "run", "scenes/warehouse.yaml", "--frames", "1", "--out", out], check=True, capture_output=True)
+    s = json.load(open(f"{out}/run_summary.json"))["seconds"]
+    costs.append(s["load"] + s["preroll"])
+costs.sort()
+print(json.dumps({"name": "per-shard start-up of the demo (load + pre-roll with stacking)", "unit": "s",
+                  "median": round(costs[2], 4), "min": round(costs[0], 4), "max": round(costs[-1], 4)}))
+PY
+rm -rf "$out"
 # Stacking: the simulation alone (4 surfaces x 15 / 100 / 1,000 cartons)...
 "$build/tools/sdg_bench_stack" 5 15 100 1000 >> "$lines"
 # ...and whole processes: load, stack 4 pallets of crates, exit (5 runs each).

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages named in third_party_notes/debian-packages.txt
-# that are not installed yet. Runs apt-get update only when something is
-# missing, so a machine that already has everything is not touched.
+# (or in the list file given as the argument) that are not installed yet.
+# Runs apt-get update only when something is missing, so a machine that
+# already has everything is not touched.
 set -euo pipefail
-list="$(dirname "$0")/../third_party_notes/debian-packages.txt"
+list="${1:-$(dirname "$0")/../third_party_notes/debian-packages.txt}"
 mapfile -t wanted < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' "$list" | grep -v '^$')
 
 missing=()

@@ -1,6 +1,8 @@
 #include "run/output_folder.h"
 
+#include <chrono>
 #include <cstdio>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -75,7 +77,13 @@ void prepareOutputFolder(const std::string& dir, const RunInfo& info, const Fold
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw SceneError(kOut, dir + " exists and is not a folder");
   const bool empty = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
   if (!empty) {
-    const bool hasRun = fs::exists(runInfoPath(dir), ec);
+    bool hasRun = fs::exists(runInfoPath(dir), ec);
+    // Shards start together: another may have made the folder and not yet
+    // written run.json. Give it a moment rather than refusing the folder.
+    for (int i = 0; policy.sharded && !hasRun && fs::exists(fs::path(dir) / kPartsFolder, ec) && i < 100; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      hasRun = fs::exists(runInfoPath(dir), ec);
+    }
     if (policy.overwrite) {
       if (policy.sharded)
         throw SceneError(kOut, "--overwrite cannot be used with shards (one shard would delete another's files); "

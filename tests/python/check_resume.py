@@ -6,7 +6,6 @@ run. While killed, no file under its final name is half written. A full
 disk (a small tmpfs, when this user may mount one) exits 1 naming the file
 and leaves no temporary file behind."""
 import glob
-import hashlib
 import os
 import signal
 import subprocess
@@ -16,6 +15,8 @@ import time
 
 from PIL import Image
 
+from dataset_files import dataset_hashes
+
 failures = []
 FLAGS = ["--frames", "12", "--iterations", "2", "--resolution", "128x128", "--threads", "2"]
 
@@ -23,15 +24,6 @@ FLAGS = ["--frames", "12", "--iterations", "2", "--resolution", "128x128", "--th
 def check(condition, message):
     if not condition:
         failures.append(message)
-
-
-def files(folder):
-    out = {}
-    for path in sorted(glob.glob(f"{folder}/**/*", recursive=True) + glob.glob(f"{folder}/.sdgbehave/**/*", recursive=True)):
-        name = os.path.relpath(path, folder)
-        if os.path.isfile(path) and name != "run_summary.json":
-            out[name] = hashlib.sha256(open(path, "rb").read()).hexdigest()
-    return out
 
 
 def manifest_lines(folder):
@@ -59,7 +51,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         reference_dir = f"{tmp}/whole"
         subprocess.run([binary, "run", scene, "--out", reference_dir, *FLAGS], check=True, capture_output=True)
-        reference = files(reference_dir)
+        reference = dataset_hashes(reference_dir)
         killed_mid_run = 0
         for n, (lines, delay) in enumerate([(0, 0.02), (2, 0.0), (13, 0.0), (21, 0.003)]):
             out = f"{tmp}/run{n}"
@@ -72,7 +64,7 @@ def main():
                     failures.append(f"kill {n}: {os.path.basename(png)} is half written: {e}")
             p = subprocess.run([binary, "run", scene, "--out", out, *FLAGS, "--resume"], capture_output=True, text=True)
             check(p.returncode == 0, f"resume {n}: exit {p.returncode}: {p.stderr.strip()[-300:]}")
-            got = files(out)
+            got = dataset_hashes(out)
             diff = sorted(k for k in set(got) | set(reference) if got.get(k) != reference.get(k))
             check(not diff, f"kill after {lines} frames, then resume: {len(diff)} files differ: {diff[:6]}")
             v = subprocess.run([binary, "verify", out], capture_output=True, text=True)

@@ -6,11 +6,12 @@ running at the same time into one folder too. Shard numbers come from Slurm
 array and Kubernetes Indexed Job variables; bad ones exit 2. `verify`
 passes on the result and fails (exit 1) on a changed file."""
 import glob
-import hashlib
 import os
 import subprocess
 import sys
 import tempfile
+
+from dataset_files import dataset_hashes
 
 failures = []
 
@@ -18,16 +19,6 @@ failures = []
 def check(condition, message):
     if not condition:
         failures.append(message)
-
-
-def files(folder):
-    # Summaries hold timings and per-shard facts: the only files allowed to differ.
-    out = {}
-    for path in sorted(glob.glob(f"{folder}/**/*", recursive=True) + glob.glob(f"{folder}/.sdgbehave/**/*", recursive=True)):
-        name = os.path.relpath(path, folder)
-        if os.path.isfile(path) and name != "run_summary.json" and not os.path.basename(name).startswith("summary."):
-            out[name] = hashlib.sha256(open(path, "rb").read()).hexdigest()
-    return out
 
 
 def run(binary, scene, out, *flags, env=None, check_rc=True):
@@ -48,7 +39,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         whole = f"{tmp}/whole"
         run(binary, scene, whole)
-        reference = files(whole)
+        reference = dataset_hashes(whole)
         check("coco_annotations.json" in reference or any(k.endswith(".json") and "coco" in k for k in reference),
               f"no COCO file in the whole run: {sorted(reference)[:5]}")
         check("contact_sheet.png" in reference and "manifest.jsonl" in reference, "whole run lacks sheet or manifest")
@@ -57,7 +48,7 @@ def main():
             for i in range(k):
                 run(binary, scene, out, "--shard", f"{i}/{k}")
             merge(binary, out)
-            got = files(out)
+            got = dataset_hashes(out)
             diff = sorted(n for n in set(got) | set(reference) if got.get(n) != reference.get(n))
             check(not diff, f"k={k}: {len(diff)} files differ from the whole run: {diff[:6]}")
         # Two shards at the same time, numbered by Slurm's variables (array 4-6:2 -> tasks 4 and 6).
@@ -70,13 +61,13 @@ def main():
         for p in procs:
             check(p.wait() == 0, f"concurrent Slurm shard exited {p.returncode}: {p.stderr.read().decode()[-300:]}")
         merge(binary, out)
-        check(files(out) == reference, "two concurrent Slurm-numbered shards differ from the whole run")
+        check(dataset_hashes(out) == reference, "two concurrent Slurm-numbered shards differ from the whole run")
         # A Kubernetes Indexed Job: the index from the environment, the count from the flag.
         out = f"{tmp}/k8s"
         for index in ("0", "1", "2"):
             run(binary, scene, out, "--shard-count", "3", env={"JOB_COMPLETION_INDEX": index})
         merge(binary, out)
-        check(files(out) == reference, "Kubernetes-indexed shards differ from the whole run")
+        check(dataset_hashes(out) == reference, "Kubernetes-indexed shards differ from the whole run")
 
         uneven = run(binary, scene, f"{tmp}/bad", env={**slurm, "SLURM_ARRAY_TASK_MAX": "7", "SLURM_ARRAY_TASK_ID": "4"},
                      check_rc=False)
