@@ -148,8 +148,14 @@ void addRun(CLI::App& app, int& exitCode) {
       exitCode = kExitOk;
       return;
     }
+    FramePlan plan = framePlanFor(loaded.scene, *args);
+    if (plan.iterations > 1 || plan.shard.sharded() || args->resume)
+      throw SceneError(SourceLoc{"--no-render", 0, 0},
+                       "--no-render plays one iteration of the whole timeline; it takes no --iterations, shard or "
+                       "--resume (found iterations " + std::to_string(plan.iterations) + ", shard " +
+                           std::to_string(plan.shard.index) + "/" + std::to_string(plan.shard.count) + ")");
     TimelineRunOptions options;
-    options.frames = args->frames.value_or(loaded.scene.capture.getUInt("frames"));
+    options.frames = plan.framesPerIteration;
     options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));
     options.recordPath = args->record;
     options.saveStagePath = args->saveStage;
