@@ -57,6 +57,8 @@ constexpr const char* kName = "volumeStackRandomizer";
 constexpr const char* kEventIn = "isaacsim.replicator.behavior.volumeStackRandomizer.in";
 constexpr const char* kEventOut = "isaacsim.replicator.behavior.volumeStackRandomizer.out";
 constexpr const char* kScope = "/Behaviors/volumeStackRandomizer";
+// Documented limit: more would take hours to simulate and GBs of prims.
+constexpr int kMaxAssetsPerSurface = 10000;
 
 enum class State { Init = 0, Setup = 1, Running = 2, Finished = 3, Reset = 4 };
 const char* stateName(State s) {
@@ -417,10 +419,11 @@ BehaviorSpec volumeStackRandomizerSpec() {
     const Attribute* r = prim.findAttribute("exposedVar:volumeStackRandomizer:assets:numRange");
     if (!r) return;
     Vec2i v = r->value.get<Vec2i>();
-    if (v.x() < 0 || v.x() > v.y())
+    if (v.x() < 0 || v.x() > v.y() || v.y() > kMaxAssetsPerSurface)
       diag.error(r->loc.known() ? r->loc : prim.loc(),
-                 prim.path() + ".exposedVar:volumeStackRandomizer:assets:numRange: expected 0 <= min <= max, found (" +
-                     std::to_string(v.x()) + ", " + std::to_string(v.y()) + ")");
+                 prim.path() + ".exposedVar:volumeStackRandomizer:assets:numRange: expected 0 <= min <= max <= " +
+                     std::to_string(kMaxAssetsPerSurface) + " (assets per surface), found (" + std::to_string(v.x()) +
+                     ", " + std::to_string(v.y()) + ")");
   };
   return spec;
 }
