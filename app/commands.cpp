@@ -31,6 +31,17 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
       ->allow_extra_args(false);
 }
 
+void addBackendArgs(CLI::App& cmd, BackendArgs& args) {
+  cmd.add_option("--backend", args.backend,
+                 "GL back end: auto (an EGL GPU when present, else OSMesa), osmesa (CPU), egl (GPU, or Mesa's "
+                 "surfaceless llvmpipe without one); overrides render.backend")
+      ->check(CLI::IsMember({"auto", "osmesa", "egl"}))
+      ->type_name("NAME");
+  cmd.add_option("--gpu", args.gpu, "EGL GPU device index (0-based); one process per GPU, with --shard")
+      ->check(CLI::Range(0, 1023))
+      ->type_name("N");
+}
+
 std::pair<int, int> parseResolution(const std::string& text) {
   std::smatch m;
   static const std::regex pattern("([0-9]{1,5})x([0-9]{1,5})");

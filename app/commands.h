@@ -30,6 +30,13 @@ std::pair<int, int> parseResolution(const std::string& text);
 // SCENE, --set, --plugin and --asset-root, shared by every scene command.
 void addSceneArgs(CLI::App& cmd, SceneArgs& args);
 
+// --backend and --gpu, shared by run and render.
+struct BackendArgs {
+  std::string backend;  // "" = render.backend
+  int gpu = -1;
+};
+void addBackendArgs(CLI::App& cmd, BackendArgs& args);
+
 void addValidate(CLI::App& app, int& exitCode);
 void addInspect(CLI::App& app, int& exitCode);
 void addSchema(CLI::App& app, int& exitCode);

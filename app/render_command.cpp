@@ -11,6 +11,7 @@ namespace sdg::cli {
 
 namespace {
 struct RenderArgs {
+  BackendArgs backend;
   SceneArgs scene;
   std::string camera;
   std::string out;
@@ -24,6 +25,7 @@ void addRender(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render one picture of a scene as authored (a quick look)");
   addSceneArgs(*cmd, args->scene);
+  addBackendArgs(*cmd, args->backend);
   cmd->add_option("--camera", args->camera, "Camera prim (default: the first of capture.cameras)")->type_name("PATH");
   cmd->add_option("-o,--out", args->out, "PNG file to write")->required()->type_name("FILE.png");
   cmd->add_option("--resolution", args->resolution, "Image size, e.g. 640x480 (overrides render.resolution)")
@@ -37,6 +39,8 @@ void addRender(CLI::App& app, int& exitCode) {
     options.camera = args->camera;
     options.outputPath = args->out;
     options.subframes = args->subframes;
+    if (!args->backend.backend.empty()) options.backend.backend = args->backend.backend;
+    options.backend.gpu = args->backend.gpu;
     if (!args->resolution.empty()) {
       auto [w, h] = parseResolution(args->resolution);
       options.width = w;

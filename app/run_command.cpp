@@ -36,6 +36,7 @@ struct RunArgs {
   std::string shard;
   std::optional<uint64_t> shardIndex, shardCount;
   bool resume = false;
+  BackendArgs backend;
 };
 
 // Frames per iteration and iterations from the scene, then the flags.
@@ -91,6 +92,7 @@ void addRun(CLI::App& app, int& exitCode) {
       ->type_name("i/k");
   cmd->add_option("--shard-index", args->shardIndex, "Same as the i of --shard")->type_name("i");
   cmd->add_option("--shard-count", args->shardCount, "Same as the k of --shard")->type_name("k");
+  addBackendArgs(*cmd, args->backend);
   cmd->add_flag("--resume", args->resume,
                 "Continue an interrupted run in --out: keep frames the manifest lists with matching files, redo the rest");
   cmd->footer(
@@ -115,6 +117,8 @@ void addRun(CLI::App& app, int& exitCode) {
       options.recordPath = args->record;
       options.saveStagePath = args->saveStage;
       options.subframes = args->subframes;
+      if (!args->backend.backend.empty()) options.backend.backend = args->backend.backend;
+      options.backend.gpu = args->backend.gpu;
       if (!args->resolution.empty()) {
         auto [w, h] = parseResolution(args->resolution);
         options.width = w;
@@ -133,12 +137,12 @@ void addRun(CLI::App& app, int& exitCode) {
       writeFileAtomic(summaryPath.string(), summary);
       if (!args->summary.empty()) writeFileAtomic(args->summary, summary);
       char line[320];
-      std::snprintf(line, sizeof line, "%llu frames%s, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s)",
+      std::snprintf(line, sizeof line, "%llu frames%s, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s, %s)",
                     static_cast<unsigned long long>(result.frames),
                     result.resumedFrames ? (" (" + std::to_string(result.resumedFrames) + " kept from before)").c_str() : "",
                     static_cast<unsigned long long>(result.files + 1), options.outDir.c_str(),
                     loadSeconds + result.seconds, result.seconds > 0 ? double(result.frames) / result.seconds : 0.0,
-                    peakRssMb(), result.backend.c_str());
+                    peakRssMb(), result.backend.c_str(), result.device.c_str());
       log::info(line);
       if (options.plan.shard.sharded())
         log::info("shard " + std::to_string(options.plan.shard.index) + " of " + std::to_string(options.plan.shard.count) +

@@ -68,6 +68,7 @@ class OsMesaContext final : public GlContext {
   }
 
   std::string backend() const override { return "osmesa"; }
+  std::string device() const override { return "CPU (OSMesa)"; }
 
  private:
   void* library_ = nullptr;
@@ -80,5 +81,15 @@ class OsMesaContext final : public GlContext {
 }  // namespace
 
 std::unique_ptr<GlContext> createOsMesaContext() { return std::make_unique<OsMesaContext>(); }
+
+std::unique_ptr<GlContext> createGlContext(const std::string& backend, int gpu) {
+  if (backend == "osmesa") {
+    if (gpu >= 0) throw RunError("--gpu " + std::to_string(gpu) + " needs the EGL back end, not osmesa");
+    return createOsMesaContext();
+  }
+  if (backend == "egl") return createEglContext(EglSelection{gpu, false});
+  if (gpu >= 0 || eglGpuAvailable()) return createEglContext(EglSelection{gpu, true});
+  return createOsMesaContext();
+}
 
 }  // namespace sdg

@@ -142,10 +142,11 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
           .string());
 
-  std::unique_ptr<GlContext> context = createOsMesaContext();
+  std::unique_ptr<GlContext> context = glContextFor(scene, options.backend);
   Renderer renderer(*context, loaded.assets, settings);
   result.renderer = context->rendererName();
   result.backend = context->backend();
+  result.device = context->device();
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   WritePool pool(threads, 2 * size_t(threads));

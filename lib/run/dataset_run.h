@@ -27,6 +27,7 @@ struct DatasetRunOptions {
   std::string recordPath;
   std::string saveStagePath;  // --save-stage: the scene after the pre-roll
   bool progress = false;  // draw a progress bar on stderr
+  BackendChoice backend;
 };
 
 // Seconds spent in each stage of the run (encode+write summed over the
@@ -44,6 +45,7 @@ struct DatasetRunResult {
   uint64_t files = 0;
   std::string renderer;
   std::string backend;
+  std::string device;
   double seconds = 0;  // wall time of the run (after loading)
   StageTimes stages;
   uint64_t simulationFrames = 0;  // renderSimulation images per camera

@@ -30,13 +30,14 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
                                                         text::join(names, ", ") + text::didYouMean(wanted, names));
   }
   const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
-  std::unique_ptr<GlContext> context = createOsMesaContext();
+  std::unique_ptr<GlContext> context = glContextFor(scene, options.backend);
   Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;
   renderer.render(list, index, frame);
   std::vector<uint8_t> png = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8);
   writeFileAtomic(options.outputPath, png);
-  return QuickRenderResult{list.cameras[index].path, context->rendererName(), frame.width, frame.height};
+  return QuickRenderResult{list.cameras[index].path, context->rendererName() + " via " + context->backend(), frame.width,
+                           frame.height};
 }
 
 }  // namespace sdg

@@ -12,6 +12,7 @@ struct QuickRenderOptions {
   std::string camera;  // "" = the first of capture.cameras, else the first Camera
   std::string outputPath;
   std::optional<int> width, height, subframes;  // override render.*
+  BackendChoice backend;
 };
 
 struct QuickRenderResult {

@@ -26,6 +26,10 @@ RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, s
   return settings;
 }
 
+std::unique_ptr<GlContext> glContextFor(const Scene& scene, const BackendChoice& choice) {
+  return createGlContext(choice.backend.value_or(scene.render.getString("backend")), choice.gpu);
+}
+
 PhysicsSettings physicsSettingsFor(const Scene& scene) {
   const OptionSet& o = scene.physics;
   PhysicsSettings s;

@@ -33,6 +33,14 @@ struct LoadedScene {
 RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
                                  std::optional<int> subframes);
 
+// --backend / --gpu over the scene's render.backend.
+struct BackendChoice {
+  std::optional<std::string> backend;  // auto | osmesa | egl
+  int gpu = -1;                        // EGL GPU index; -1: the first
+};
+// The GL context for a run or a picture (RunError naming what was tried).
+std::unique_ptr<GlContext> glContextFor(const Scene& scene, const BackendChoice& choice);
+
 // The scene's physics section as the settings the stacking code reads.
 PhysicsSettings physicsSettingsFor(const Scene& scene);
 
