@@ -105,7 +105,11 @@ void measure(const std::string& name, const Stage& stage, Renderer& renderer, in
 }  // namespace
 
 int main() {
-  auto context = createOsMesaContext();
+  // SDG_BACKEND=egl measures the EGL back end (a GPU where there is one).
+  const char* backend = std::getenv("SDG_BACKEND");
+  auto context = createGlContext(backend ? backend : "osmesa", -1);
+  std::fprintf(stderr, "bench_render: %s on %s (%s)\n", context->backend().c_str(), context->device().c_str(),
+               context->rendererName().c_str());
   AssetResolver assets;
   RenderSettings settings;  // 512 x 512, one sample, all passes read back
   Renderer renderer(*context, assets, settings);
