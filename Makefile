@@ -5,7 +5,7 @@ PRESET ?= release
 BUILD  := build/$(PRESET)
 BIN    := $(BUILD)/app/sdgbehave
 
-.PHONY: deps configure build test demo bench asan clean
+.PHONY: deps configure build test demo bench asan fuzz clean
 
 deps:
 	@tools/install-deps.sh
@@ -32,6 +32,10 @@ bench: build
 asan:
 	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test PRESET=asan
+
+# libFuzzer on the scene loader and the --set parser, FUZZ_SECONDS each (60).
+fuzz: deps
+	@tools/fuzz.sh
 
 clean:
 	rm -rf build out

@@ -12,6 +12,13 @@
 
 namespace sdg {
 
+RawNode::RawNode() = default;
+RawNode::~RawNode() = default;
+RawNode::RawNode(const RawNode&) = default;
+RawNode::RawNode(RawNode&&) noexcept = default;
+RawNode& RawNode::operator=(const RawNode&) = default;
+RawNode& RawNode::operator=(RawNode&&) noexcept = default;
+
 const RawNode* RawNode::find(std::string_view key) const {
   for (const auto& [k, v] : entries)
     if (k.isScalar() && k.scalar == key) return &v;
@@ -62,7 +69,7 @@ class Converter {
         for (const auto& kv : node) {
           RawNode key = convert(kv.first, out.loc);
           RawNode value = convert(kv.second, key.loc);
-          out.entries.emplace_back(std::move(key), std::move(value));
+          out.entries.push_back(RawEntry{std::move(key), std::move(value)});
         }
         break;
     }

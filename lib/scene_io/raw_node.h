@@ -10,15 +10,25 @@
 
 namespace sdg {
 
+struct RawEntry;
+
 struct RawNode {
   enum class Kind { Null, Scalar, Sequence, Map };
+
+  // Out of line: RawEntry holds RawNodes, so it is complete only below.
+  RawNode();
+  ~RawNode();
+  RawNode(const RawNode&);
+  RawNode(RawNode&&) noexcept;
+  RawNode& operator=(const RawNode&);
+  RawNode& operator=(RawNode&&) noexcept;
 
   Kind kind = Kind::Null;
   std::string scalar;   // Scalar text
   bool quoted = false;  // Scalar written in quotes (so never a number or bool)
   SourceLoc loc;
   std::vector<RawNode> items;                          // Sequence
-  std::vector<std::pair<RawNode, RawNode>> entries;    // Map, document order
+  std::vector<RawEntry> entries;                       // Map, document order
 
   bool isNull() const { return kind == Kind::Null; }
   bool isScalar() const { return kind == Kind::Scalar; }
@@ -28,6 +38,11 @@ struct RawNode {
   const RawNode* find(std::string_view key) const;
   // For messages: "a mapping", "a list of 2 items", "the string 'abc'", ...
   std::string describe() const;
+};
+
+struct RawEntry {
+  RawNode key;
+  RawNode value;
 };
 
 // Documented limits that keep hostile documents bounded in memory and time.

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# `make fuzz`: builds the libFuzzer harnesses (the `fuzz` preset: clang,
+# ASan + UBSan) and runs each for FUZZ_SECONDS (default 60), seeded with
+# every scene in scenes/ and tests/data. A crash leaves its input in
+# build/fuzz/artifacts/ and fails; add it to tests/data/fuzz_regressions/.
+set -euo pipefail
+seconds=${FUZZ_SECONDS:-60}
+build=build/fuzz
+cmake --preset fuzz >/dev/null
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides
+mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/artifacts"
+find scenes tests/data -name '*.yaml' -exec cp {} "$build/corpus/scene/" \;
+printf '%s\n' 'render.resolution=[640,480]' '/World/Box.size=3' '/World/Box.xformOp:translate=[1,2,3]' \
+  '/World/Box.exposedVar:locationRandomizer:interval=4' 'capture.frames=12' 'physics.require_settled=true' \
+  '/World/Cam.orient=[0.7,0.7,0,0]' > "$build/corpus/set/seed1"
+status=0
+for harness in fuzz_scene_loader fuzz_overrides; do
+  corpus=$build/corpus/scene
+  [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
+  echo "fuzz: $harness for ${seconds}s"
+  "$build/tests/fuzz/$harness" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+    -artifact_prefix="$build/artifacts/$harness-" -print_final_stats=1 "$corpus" 2>&1 | tail -12 || status=1
+done
+exit $status
