@@ -18,7 +18,7 @@ for harness in fuzz_scene_loader fuzz_overrides; do
   corpus=$build/corpus/scene
   [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
   echo "fuzz: $harness for ${seconds}s"
-  "$build/tests/fuzz/$harness" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+  "$build/tests/fuzz/$harness" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
     -artifact_prefix="$build/artifacts/$harness-" -print_final_stats=1 "$corpus" 2>&1 | tail -12 || status=1
 done
 exit $status

@@ -23,7 +23,6 @@ struct EglApi {
   void* library = nullptr;
   PFNEGLGETPROCADDRESSPROC getProcAddress = nullptr;
   PFNEGLINITIALIZEPROC initialize = nullptr;
-  PFNEGLTERMINATEPROC terminate = nullptr;
   PFNEGLBINDAPIPROC bindApi = nullptr;
   PFNEGLCHOOSECONFIGPROC chooseConfig = nullptr;
   PFNEGLCREATECONTEXTPROC createContext = nullptr;
@@ -47,7 +46,6 @@ struct EglApi {
       if (!fn) throw RunError(std::string("EGL back end: libEGL lacks ") + name);
     };
     need(initialize, "eglInitialize");
-    need(terminate, "eglTerminate");
     need(bindApi, "eglBindAPI");
     need(chooseConfig, "eglChooseConfig");
     need(createContext, "eglCreateContext");
@@ -140,11 +138,12 @@ class EglContext final : public GlContext {
       throw RunError("EGL back end: the GL function " + missing + " is missing");
   }
 
+  // The display stays initialised (no eglTerminate): drivers keep
+  // process-lifetime state, and unloading them mid-process only hides it.
   ~EglContext() override {
     if (display_ != EGL_NO_DISPLAY) {
       egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (context_ != EGL_NO_CONTEXT) egl_.destroyContext(display_, context_);
-      egl_.terminate(display_);
     }
   }
 

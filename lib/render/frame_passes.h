@@ -7,6 +7,15 @@
 
 namespace sdg {
 
+// Which buffers to read back besides colour. Read-back is most of a GPU
+// frame's cost, so a run asks only for what its writer uses; buffers not
+// read keep their previous contents.
+struct PassSelection {
+  bool normals = true;    // normals and distanceToCamera
+  bool imagePlane = true; // distanceToImagePlane
+  bool ids = true;        // instanceIds
+};
+
 struct FramePasses {
   int width = 0;
   int height = 0;

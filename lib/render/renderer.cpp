@@ -464,7 +464,7 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glBindVertexArray(0);
 }
 
-void Renderer::readBack(FramePasses& out, bool colorOnly) {
+void Renderer::readBack(FramePasses& out, bool colorOnly, const PassSelection& passes) {
   const int w = settings_.width, h = settings_.height;
   const size_t n = size_t(w) * size_t(h);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
@@ -484,22 +484,28 @@ void Renderer::readBack(FramePasses& out, bool colorOnly) {
   }
   flipInto(scratchRgba_.data(), out.rgba.data(), 4);
   scratchFloat_.resize(n * 4);
-  gl_.glReadBuffer(GL_COLOR_ATTACHMENT1);
-  gl_.glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, scratchFloat_.data());
-  flipInto(scratchFloat_.data(), out.normals.data(), 4);
-  for (size_t i = 0; i < n; ++i) {
-    out.distanceToCamera[i] = out.normals[4 * i + 3];
-    out.normals[4 * i + 3] = 0.0f;
+  if (passes.normals) {
+    gl_.glReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl_.glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, scratchFloat_.data());
+    flipInto(scratchFloat_.data(), out.normals.data(), 4);
+    for (size_t i = 0; i < n; ++i) {
+      out.distanceToCamera[i] = out.normals[4 * i + 3];
+      out.normals[4 * i + 3] = 0.0f;
+    }
   }
-  gl_.glReadBuffer(GL_COLOR_ATTACHMENT2);
-  gl_.glReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, scratchFloat_.data());
-  flipInto(scratchFloat_.data(), out.distanceToImagePlane.data(), 1);
-  gl_.glReadBuffer(GL_COLOR_ATTACHMENT3);
-  gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, reinterpret_cast<uint32_t*>(scratchFloat_.data()));
-  flipInto(reinterpret_cast<const uint32_t*>(scratchFloat_.data()), out.instanceIds.data(), 1);
+  if (passes.imagePlane) {
+    gl_.glReadBuffer(GL_COLOR_ATTACHMENT2);
+    gl_.glReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, scratchFloat_.data());
+    flipInto(scratchFloat_.data(), out.distanceToImagePlane.data(), 1);
+  }
+  if (passes.ids) {
+    gl_.glReadBuffer(GL_COLOR_ATTACHMENT3);
+    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, reinterpret_cast<uint32_t*>(scratchFloat_.data()));
+    flipInto(reinterpret_cast<const uint32_t*>(scratchFloat_.data()), out.instanceIds.data(), 1);
+  }
 }
 
-void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out) {
+void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes) {
   const int w = settings_.width, h = settings_.height;
   if (cameraIndex >= list.cameras.size()) throw RunError("renderer: no camera to render");
   if (out.width != w || out.height != h || !colorTexture_) {
@@ -533,13 +539,13 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
   const RenderCamera& camera = list.cameras[cameraIndex];
   // Labels come from the un-jittered sample so they stay exact.
   drawScene(list, camera, {0, 0});
-  readBack(out, false);
+  readBack(out, false, passes);
   if (settings_.subframes <= 1) return;
   colorSum_.assign(out.rgba.begin(), out.rgba.end());
   for (int s = 1; s < settings_.subframes; ++s) {
     Eigen::Vector2d jitter(halton(s, 2) - 0.5, halton(s, 3) - 0.5);
     drawScene(list, camera, jitter);
-    readBack(out, true);
+    readBack(out, true, passes);
   }
   const uint32_t k = uint32_t(settings_.subframes);
   for (size_t i = 0; i < out.rgba.size(); ++i) out.rgba[i] = uint8_t((colorSum_[i] + k / 2) / k);

@@ -39,7 +39,7 @@ class Renderer {
   // Renders camera `cameraIndex` of `list` into `out` (resized as needed).
   // Asset problems (missing or corrupt mesh or texture) throw RunError
   // naming the prim and the file.
-  void render(const RenderList& list, size_t cameraIndex, FramePasses& out);
+  void render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes = {});
   const RenderSettings& settings() const { return settings_; }
 
   // For each group of items (an entity), drawn alone with the same camera:
@@ -70,7 +70,7 @@ class Renderer {
   Eigen::AlignedBox3d sceneBounds(const RenderList& list);
   void drawShadowMaps(const RenderList& list);
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
-  void readBack(FramePasses& out, bool colorOnly);
+  void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
 
   GlContext& context_;
   const GlApi& gl_;

@@ -153,6 +153,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
                                   ->options.get("semantic_types")
                                   .get<std::vector<std::string>>();
+  const bool annotations = writer.needsAnnotations() || cocoConfig != nullptr;
+  PassSelection passes = writer.passesNeeded();
+  passes.ids = passes.ids || cocoConfig != nullptr;  // COCO masks come from the ids
   const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
@@ -218,7 +221,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         job->camera = list.cameras[cameraIndex];
         job->metersPerUnit = list.metersPerUnit;
         auto renderStart = Clock::now();
-        renderer.render(list, cameraIndex, job->passes);
+        renderer.render(list, cameraIndex, job->passes, passes);
         std::vector<Renderer::Coverage> coverage;
         const bool toSheet = product == 0 && sheetFrames.count(frame);
         if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, coverage);
@@ -226,8 +229,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         auto annotateStart = Clock::now();
         std::vector<EntityCoverage> entityCoverage;
         for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-        annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
-                 job->annotations);
+        if (annotations)
+          annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
+                   job->annotations);
         for (const SemanticEntity& e : semantics.entities) {
           job->entityPaths.push_back(e.primPath);
           job->entityLabels.push_back(e.labels);

@@ -54,6 +54,15 @@ bool BasicWriter::needsCoverage() const {
          options_.getBool("bounding_box_2d_tight") || options_.getBool("bounding_box_3d");
 }
 
+PassSelection BasicWriter::passesNeeded() const {
+  PassSelection p;
+  const bool cloud = options_.getBool("pointcloud");
+  p.normals = cloud || options_.getBool("normals") || options_.getBool("distance_to_camera");
+  p.imagePlane = options_.getBool("distance_to_image_plane");
+  p.ids = cloud || needsAnnotations() || options_.getBool("instance_id_segmentation");
+  return p;
+}
+
 bool BasicWriter::needsAnnotations() const {
   for (const char* k : {"bounding_box_2d_tight", "bounding_box_2d_loose", "semantic_segmentation",
                         "instance_segmentation", "bounding_box_3d", "occlusion", "pointcloud"})

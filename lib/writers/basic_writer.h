@@ -42,6 +42,8 @@ class BasicWriter {
   // Which annotators need which inputs.
   bool needsCoverage() const;  // entities drawn alone: loose boxes and occlusion
   bool needsAnnotations() const;
+  // The buffers its annotators read (colour is always read).
+  PassSelection passesNeeded() const;
   std::vector<OutputFile> metadataFiles() const;
   std::vector<OutputFile> encode(const ProductFrame& frame) const;
   // Where this writer puts a frame's rgb image (COCO's file_name).
