@@ -19,6 +19,7 @@ namespace sdg {
   X(PFNGLENABLEPROC, glEnable)                                                                \
   X(PFNGLDISABLEPROC, glDisable)                                                              \
   X(PFNGLDEPTHFUNCPROC, glDepthFunc)                                                          \
+  X(PFNGLCOLORMASKPROC, glColorMask)                                                          \
   X(PFNGLDEPTHMASKPROC, glDepthMask)                                                          \
   X(PFNGLCULLFACEPROC, glCullFace)                                                            \
   X(PFNGLPOLYGONOFFSETPROC, glPolygonOffset)                                                  \

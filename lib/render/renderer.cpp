@@ -135,6 +135,9 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
   maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment, false);
+  depthProgram_ = link(gl_, shaders::kDepthVertex, shaders::kShadowFragment, false);
+  depthWorldFromLocal_ = gl_.glGetUniformLocation(depthProgram_, "uWorldFromLocal");
+  depthViewProjection_ = gl_.glGetUniformLocation(depthProgram_, "uViewProjection");
   gl_.glGenFramebuffers(1, &maskFramebuffer_);
   gl_.glGenVertexArrays(1, &emptyVao_);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
@@ -351,8 +354,23 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glDepthFunc(GL_LESS);
 
   const Uniforms& u = *uniforms_;
-  gl_.glUseProgram(sceneProgram_);
   const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
+  // Depth first, colour writes off: the expensive lighting below then runs
+  // once per visible pixel instead of once per covering triangle.
+  gl_.glUseProgram(depthProgram_);
+  setMatrix(gl_, depthViewProjection_, viewProjection);
+  gl_.glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  for (const RenderItem& item : list.items) {
+    const GpuMesh& m = mesh(item);
+    setMatrix(gl_, depthWorldFromLocal_, item.worldFromLocal);
+    gl_.glBindVertexArray(m.vao);
+    GLsizei count = 0;
+    for (const MeshPart& part : m.parts) count = std::max<GLsizei>(count, GLsizei(part.firstIndex + part.indexCount));
+    gl_.glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  }
+  gl_.glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl_.glDepthFunc(GL_LEQUAL);
+  gl_.glUseProgram(sceneProgram_);
   setMatrix(gl_, u.uViewProjection, viewProjection);
   const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
   const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();

@@ -77,6 +77,8 @@ class Renderer {
   const AssetResolver& assets_;
   RenderSettings settings_;
   unsigned sceneProgram_ = 0, shadowProgram_ = 0, skyProgram_ = 0, maskProgram_ = 0, emptyVao_ = 0;
+  unsigned depthProgram_ = 0;
+  int depthWorldFromLocal_ = -1, depthViewProjection_ = -1;
   unsigned maskFramebuffer_ = 0, maskTexture_ = 0, maskDepth_ = 0;
   int maskWidth_ = 0, maskHeight_ = 0;
   std::vector<uint32_t> maskPixels_;

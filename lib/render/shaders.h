@@ -36,6 +36,7 @@ uniform mat4 uViewProjection;
 out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 out vec2 vUv;
+invariant gl_Position;  // bit-identical to the depth pre-pass
 void main() {
   vec4 world = uWorldFromLocal * vec4(aPosition, 1.0);
   vWorldPosition = world.xyz;
@@ -208,6 +209,19 @@ void main() {
   oNormalDistance = vec4(0.0, 0.0, 0.0, 1.0 / 0.0);
   oPlaneDistance = 1.0 / 0.0;
   oInstanceId = 0u;
+}
+)";
+
+// The depth pre-pass: the same position arithmetic as kSceneVertex, so the
+// shading pass can test GL_LEQUAL and shade each pixel once.
+inline constexpr const char* kDepthVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+uniform mat4 uWorldFromLocal;
+uniform mat4 uViewProjection;
+invariant gl_Position;
+void main() {
+  vec4 world = uWorldFromLocal * vec4(aPosition, 1.0);
+  gl_Position = uViewProjection * world;
 }
 )";
 
