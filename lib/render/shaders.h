@@ -105,7 +105,8 @@ vec3 albedo(vec3 n) {
   return x * w.x + y * w.y + z * w.z;
 }
 
-// Fraction of the light that reaches this point: 3 x 3 bilinear PCF.
+// Fraction of the light that reaches this point: 2 x 2 taps of bilinear
+// PCF (each tap already compares and blends 4 texels), so 4 x 4 texels.
 float shadow(int slot) {
   vec4 q = uShadowMatrix[slot] * vec4(vWorldPosition, 1.0);
   if (q.w <= 0.0) return 1.0;
@@ -115,10 +116,10 @@ float shadow(int slot) {
   vec2 tile = vec2(slot % 2, slot / 2);
   vec2 inTile = clamp(p.xy, 2.0 * uShadowTexel, 1.0 - 2.0 * uShadowTexel);
   float lit = 0.0;
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j)
-      lit += texture(uShadowAtlas, vec3((tile + inTile + vec2(i, j) * 2.0 * uShadowTexel) * 0.5, p.z));
-  return lit / 9.0;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j)
+      lit += texture(uShadowAtlas, vec3((tile + inTile + (vec2(i, j) - 0.5) * 2.0 * uShadowTexel) * 0.5, p.z));
+  return lit / 4.0;
 }
 
 // Lambert diffuse + GGX specular (Smith-Schlick visibility, Schlick Fresnel).
