@@ -31,6 +31,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+struct FrameShared {
+  RenderList list;
+  FrameSemantics semantics;
+  std::vector<Eigen::AlignedBox3f> itemBounds;
+};
+
 // A frame's thumbnail with the tight box and class of every visible entity.
 std::vector<uint8_t> sheetTile(uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
                                const std::vector<Renderer::Coverage>& coverage) {
@@ -159,6 +165,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
+  std::atomic<uint64_t> annotateMicros{0};
   uint64_t owned = plan.ownedEnd() - plan.ownedBegin(), sequence = 0;
   for (uint64_t f = plan.ownedBegin(); f < plan.ownedEnd(); ++f) result.resumedFrames += finished.count(f);
   Progress progress(owned - result.resumedFrames, options.progress);
@@ -201,14 +208,15 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       result.stages.behaviors += since(t0);
       if (frame < begin || finished.count(frame)) continue;  // stepped, not rendered
       if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
-      t0 = Clock::now();
-      RenderList list = buildRenderList(scene.stage);
-      FrameSemantics semantics = computeSemantics(scene.stage, list, semanticTypes);
-      std::vector<Eigen::AlignedBox3f> itemBounds;
-      itemBounds.reserve(list.items.size());
-      for (const RenderItem& item : list.items) itemBounds.push_back(renderer.meshBounds(item));
+      // What every render product of this frame shares, read by the pool.
+      auto shared = std::make_shared<FrameShared>();
+      shared->list = buildRenderList(scene.stage);
+      const RenderList& list = shared->list;
+      shared->semantics = computeSemantics(scene.stage, list, semanticTypes);
+      shared->itemBounds.reserve(list.items.size());
+      for (const RenderItem& item : list.items) shared->itemBounds.push_back(renderer.meshBounds(item));
       std::vector<std::vector<size_t>> groups;
-      for (const SemanticEntity& e : semantics.entities) groups.push_back(e.items);
+      for (const SemanticEntity& e : shared->semantics.entities) groups.push_back(e.items);
 
       for (size_t product = 0; product < cameraPaths.size(); ++product) {
         size_t cameraIndex = list.cameras.size();
@@ -222,46 +230,51 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         job->metersPerUnit = list.metersPerUnit;
         auto renderStart = Clock::now();
         renderer.render(list, cameraIndex, job->passes, passes);
-        std::vector<Renderer::Coverage> coverage;
+        auto coverage = std::make_shared<std::vector<Renderer::Coverage>>();
         const bool toSheet = product == 0 && sheetFrames.count(frame);
-        if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, coverage);
+        if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, *coverage);
         result.stages.render += since(renderStart);
-        auto annotateStart = Clock::now();
-        std::vector<EntityCoverage> entityCoverage;
-        for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-        if (annotations)
-          annotate(AnnotatorInputs{job->passes, list, cameraIndex, semantics, entityCoverage, itemBounds, scene.stage},
-                   job->annotations);
-        for (const SemanticEntity& e : semantics.entities) {
-          job->entityPaths.push_back(e.primPath);
-          job->entityLabels.push_back(e.labels);
-        }
-        job->semanticLabels = semantics.semanticLabels;
-        // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
-        auto parts = std::make_shared<std::vector<OutputFile>>();
-        if (cocoConfig) {
-          std::string text = cocoFragment(writer.rgbPath(frame, product), job->passes.width, job->passes.height,
-                                          job->annotations, semantics, info.cocoTaxonomy);
-          parts->push_back({cocoFragmentPath(frame, product), std::vector<uint8_t>(text.begin(), text.end())});
-        }
-        if (toSheet) parts->push_back({contactSheetTilePath(frame), sheetTile(frame, job->passes, semantics, coverage)});
-        job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
-        for (const RenderItem& item : list.items)
-          if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
-        result.stages.annotate += since(annotateStart);
         const std::string outDir = options.outDir;
-        pool.submit([job, parts, &writer, &manifest, outDir, &files, &encodeMicros, seq = sequence++] {
+        // Annotators, COCO fragment, thumbnail, encoding and writing all run
+        // on the pool; the main thread goes on to the next frame.
+        pool.submit([job, shared, coverage, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
+                     outDir, &files, &encodeMicros, &annotateMicros, seq = sequence++] {
           auto jobStart = Clock::now();
+          const FrameSemantics& semantics = shared->semantics;
+          std::vector<EntityCoverage> entityCoverage;
+          for (const auto& c : *coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+          if (annotations)
+            annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
+                     job->annotations);
+          for (const SemanticEntity& e : semantics.entities) {
+            job->entityPaths.push_back(e.primPath);
+            job->entityLabels.push_back(e.labels);
+          }
+          job->semanticLabels = semantics.semanticLabels;
+          job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
+          for (const RenderItem& item : shared->list.items)
+            if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+          // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
+          std::vector<OutputFile> parts;
+          if (cocoConfig) {
+            std::string text = cocoFragment(writer.rgbPath(job->frame, job->product), job->passes.width,
+                                            job->passes.height, job->annotations, semantics, info.cocoTaxonomy);
+            parts.push_back({cocoFragmentPath(job->frame, job->product), std::vector<uint8_t>(text.begin(), text.end())});
+          }
+          if (toSheet)
+            parts.push_back({contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, *coverage)});
+          auto encodeStart = Clock::now();
+          annotateMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(encodeStart - jobStart).count());
           std::vector<OutputFile> encoded = writer.encode(*job);
           const size_t datasetFiles = encoded.size();  // the hidden parts are not counted
-          for (OutputFile& part : *parts) encoded.push_back(std::move(part));
+          for (OutputFile& part : parts) encoded.push_back(std::move(part));
           writeFilesDurably(outDir, encoded);
           ManifestEntry entry{job->frame, uint32_t(job->product), {}};
           for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
           manifest.commit(seq, std::move(entry));
           files += datasetFiles;
           encodeMicros +=
-              uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - jobStart).count());
+              uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - encodeStart).count());
         });
       }
       log::debug("frame " + std::to_string(frame) + " rendered");
@@ -283,6 +296,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   }
   result.files = written;
   result.stages.encodeWrite = double(encodeMicros) / 1e6;
+  result.stages.annotate = double(annotateMicros) / 1e6;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

@@ -30,8 +30,8 @@ struct DatasetRunOptions {
   BackendChoice backend;
 };
 
-// Seconds spent in each stage of the run (encode+write summed over the
-// pool's threads, so it can exceed the wall time).
+// Seconds spent in each stage of the run (annotate and encode+write run on
+// the pool and are summed over its threads, so they can exceed the wall time).
 struct StageTimes {
   double preroll = 0, behaviors = 0, render = 0, annotate = 0, encodeWrite = 0;
 };

@@ -65,9 +65,7 @@ void annotate(const AnnotatorInputs& in, FrameAnnotations& out) {
   out.boxes3d.clear();
   const RenderCamera& camera = in.list.cameras[in.camera];
   for (size_t e = 0; e < entities.size(); ++e) {
-    const Prim* root = in.stage.find(entities[e].primPath);
-    if (!root) continue;
-    const Matrix4d worldFromRoot = in.stage.worldMatrix(*root);
+    const Matrix4d& worldFromRoot = entities[e].worldFromRoot;
     const Matrix4d rootFromWorld = worldFromRoot.inverse();
     Eigen::AlignedBox3d local;
     for (size_t item : entities[e].items) {

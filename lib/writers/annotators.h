@@ -50,7 +50,6 @@ struct AnnotatorInputs {
   const FrameSemantics& semantics;
   const std::vector<EntityCoverage>& coverage;           // per entity; empty when not rendered
   const std::vector<Eigen::AlignedBox3f>& itemBounds;    // per render item, local space
-  const Stage& stage;
 };
 
 void annotate(const AnnotatorInputs& in, FrameAnnotations& out);

@@ -58,6 +58,7 @@ FrameSemantics computeSemantics(const Stage& stage, const RenderList& list,
       if (fresh) out.semanticLabels.push_back(entity.labels);
       entity.semanticId = sid->second;
       entity.instanceId = uint32_t(out.entities.size()) + 2;
+      entity.worldFromRoot = stage.worldMatrix(*root);
       out.entities.push_back(std::move(entity));
     }
     out.entities[it->second].items.push_back(i);

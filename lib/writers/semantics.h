@@ -26,6 +26,7 @@ struct SemanticEntity {
   uint32_t semanticId = 0; // >= 2; entities with equal labels share it
   uint32_t instanceId = 0; // >= 2, one per entity
   std::vector<size_t> items;  // indices into RenderList::items
+  Matrix4d worldFromRoot = Matrix4d::Identity();  // the labelled prim's, for 3D boxes
 };
 
 struct FrameSemantics {
