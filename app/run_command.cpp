@@ -45,6 +45,10 @@ FramePlan framePlanFor(const Scene& scene, const RunArgs& args) {
   const uint32_t perIteration = scene.capture.getUInt("frames_per_iteration");
   plan.framesPerIteration = args.frames.value_or(perIteration ? perIteration : scene.capture.getUInt("frames"));
   plan.iterations = args.iterations.value_or(scene.capture.getUInt("iterations"));
+  if (plan.framesPerIteration && plan.iterations > kMaxRunFrames / plan.framesPerIteration)
+    throw SceneError(SourceLoc{"--iterations", 0, 0},
+                     std::to_string(plan.iterations) + " iterations x " + std::to_string(plan.framesPerIteration) +
+                         " frames is beyond the limit of 2^50 frames per run; split the dataset into several runs");
   std::optional<uint64_t> index = args.shardIndex, count = args.shardCount;
   if (!args.shard.empty()) {
     if (index || count) throw SceneError(SourceLoc{"--shard", 0, 0}, "give --shard i/k or --shard-index/--shard-count, not both");

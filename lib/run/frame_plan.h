@@ -19,15 +19,26 @@ struct ShardSpec {
   std::string tag() const;
 };
 
+// Documented limit on frames per run (iterations x frames per iteration);
+// nothing is allocated per frame, this only keeps the arithmetic exact.
+inline constexpr uint64_t kMaxRunFrames = uint64_t(1) << 50;
+
 struct FramePlan {
   uint64_t iterations = 1;
   uint64_t framesPerIteration = 1;
   ShardSpec shard;
 
   uint64_t total() const { return iterations * framesPerIteration; }
-  uint64_t ownedBegin() const { return total() * shard.index / shard.count; }
-  uint64_t ownedEnd() const { return total() * (shard.index + 1) / shard.count; }
+  // 128-bit products: total x index must not wrap for any shard count.
+  uint64_t ownedBegin() const { return blockStart(shard.index); }
+  uint64_t ownedEnd() const { return blockStart(shard.index + 1); }
   bool owns(uint64_t frame) const { return frame >= ownedBegin() && frame < ownedEnd(); }
+
+ private:
+  uint64_t blockStart(uint64_t index) const {
+    __extension__ using Wide = unsigned __int128;
+    return static_cast<uint64_t>(static_cast<Wide>(total()) * index / shard.count);
+  }
 };
 
 // The shard from the flags, else from the scheduler's environment: Slurm
