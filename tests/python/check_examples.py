@@ -10,6 +10,7 @@ import subprocess
 import sys
 import tempfile
 
+import numpy as np
 from PIL import Image
 
 
@@ -47,6 +48,27 @@ def main():
             failures.append("writer_coco: unexpected COCO content")
         if not os.path.exists(f"{tmp}/writer_depth_and_normals.yaml/distance_to_camera_0000.png"):
             failures.append("writer_depth_and_normals: no colorized depth")
+        seg = f"{tmp}/writer_segmentation.yaml"
+        for name in ("semantic_segmentation", "instance_id_segmentation", "instance_segmentation"):
+            image = Image.open(f"{seg}/{name}_0000.png")
+            if image.mode not in ("I", "I;16"):
+                failures.append(f"writer_segmentation: {name} is {image.mode}, not raw 16-bit ids")
+        labels = json.load(open(f"{seg}/semantic_segmentation_labels_0000.json"))
+        if {v.get("class") for v in labels.values()} != {"floor", "crate", "ball"}:
+            failures.append(f"writer_segmentation: labels {labels}")
+        boxes = f"{tmp}/writer_boxes.yaml"
+        tight = np.load(f"{boxes}/bounding_box_2d_tight_0000.npy")
+        loose = np.load(f"{boxes}/bounding_box_2d_loose_0000.npy")
+        paths = json.load(open(f"{boxes}/bounding_box_2d_tight_prim_paths_0000.json"))
+        back = paths.index("/World/Back") if "/World/Back" in paths else None
+        if back is None or not tight[back]["occlusionRatio"] > 0.1:
+            failures.append(f"writer_boxes: the back crate should be partly hidden: {tight}")
+        for t, l in zip(tight, loose):
+            if not (l["x_min"] <= t["x_min"] and l["y_min"] <= t["y_min"] and l["x_max"] >= t["x_max"]
+                    and l["y_max"] >= t["y_max"]):
+                failures.append(f"writer_boxes: loose {l} does not contain tight {t}")
+        if len(np.load(f"{boxes}/bounding_box_3d_0000.npy")) != 2:
+            failures.append("writer_boxes: expected two 3D boxes")
     if failures:
         print("\n".join(failures))
         return 1
