@@ -86,12 +86,16 @@ class StackRun {
  private:
   // Each asset gets the surface's push direction plus its own pull toward
   // the surface origin. (Isaac Sim sums every asset's pull into one shared
-  // vector by accident; see the README.)
+  // vector by accident; see the README.) A force lasts one step, and the
+  // spec's fixed newtons would fling a light asset through a wall, so the
+  // speed one push adds is capped.
   void applyForces(const Vec3d& direction, double intensity) {
     for (const LiveAsset& a : live_) {
       const StackSurface& s = plan_.surfaces[a.surface];
       Vec3d origin = world_->pose(a.body).position;
       Vec3d force = s.rotation * direction * intensity + (s.origin - origin) * intensity * kCentreForceScale;
+      const double addedSpeed = force.norm() * options_.world.dt / world_->mass(a.body);
+      if (addedSpeed > kMaxPushSpeed) force *= kMaxPushSpeed / addedSpeed;
       world_->addForceAtPoint(a.body, force, origin);
     }
   }

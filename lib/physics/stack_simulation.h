@@ -80,6 +80,8 @@ inline constexpr int kPullRounds = 2;
 inline constexpr int kPullSteps = 20;
 inline constexpr double kPullIntensity = 250;
 inline constexpr double kCentreForceScale = 0.2;
+// Most speed one push may add to an asset (stage units / s).
+inline constexpr double kMaxPushSpeed = 0.5;
 inline constexpr int kFinalSteps = 20;
 inline constexpr double kRunFriction = 0.001;
 inline constexpr double kFinalFriction = 0.95;
