@@ -20,7 +20,10 @@ constexpr const char* kDescription =
     "  sdgbehave validate scenes/warehouse.yaml\n"
     "  sdgbehave inspect scenes/warehouse.yaml --set render.resolution=[640,480]\n"
     "  sdgbehave describe locationRandomizer\n"
+    "  sdgbehave run scenes/warehouse.yaml --frames 6 --seed 10 --out out/warehouse   # then open contact_sheet.png\n"
     "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --no-render --record changes.jsonl\n"
+    "  sdgbehave run scenes/warehouse.yaml --frames 50 --shard 0/2 --out ds   # and --shard 1/2, then:\n"
+    "  sdgbehave merge ds && sdgbehave verify ds\n"
     "  sdgbehave schema --out schemas/scene.schema.json\n";
 
 }  // namespace
