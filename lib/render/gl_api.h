@@ -47,6 +47,8 @@ namespace sdg {
   X(PFNGLBINDBUFFERPROC, glBindBuffer)                                                        \
   X(PFNGLBUFFERDATAPROC, glBufferData)                                                        \
   X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)                                                  \
+  X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange)                                                \
+  X(PFNGLUNMAPBUFFERPROC, glUnmapBuffer)                                                      \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)                              \
   X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)                                      \
   X(PFNGLDRAWELEMENTSPROC, glDrawElements)                                                    \

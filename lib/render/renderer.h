@@ -40,6 +40,14 @@ class Renderer {
   // Asset problems (missing or corrupt mesh or texture) throw RunError
   // naming the prim and the file.
   void render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes = {});
+
+  // The same in two halves, so a run can overlap the GPU with the CPU:
+  // queue() draws and starts the read-back into pixel buffer objects of
+  // `slot` (0 or 1) without waiting for the GPU; collect() waits for that
+  // slot and fills `out`, bit for bit what render() would have. With
+  // subframes > 1 queue() renders synchronously and collect() hands over.
+  void queue(const RenderList& list, size_t cameraIndex, const PassSelection& passes, int slot);
+  void collect(int slot, FramePasses& out);
   const RenderSettings& settings() const { return settings_; }
 
   // For each group of items (an entity), drawn alone with the same camera:
@@ -71,6 +79,18 @@ class Renderer {
   void drawShadowMaps(const RenderList& list);
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
+  void ensureTargets();
+  void drawFrame(const RenderList& list, size_t cameraIndex);
+  // One attachment's pixels (bottom row first, as GL gives them) into `out`.
+  void unpack(int attachment, const void* pixels, FramePasses& out);
+  struct ReadSlot {
+    unsigned buffers[4] = {0, 0, 0, 0};  // one pixel buffer per attachment
+    PassSelection passes;
+    bool pending = false;
+    bool synchronous = false;  // subframes: the frame is already in `frame`
+    FramePasses frame;
+  };
+  ReadSlot readSlots_[2];
 
   GlContext& context_;
   const GlApi& gl_;

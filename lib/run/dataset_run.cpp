@@ -3,6 +3,7 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <memory>
 #include <set>
 #include <thread>
@@ -35,6 +36,16 @@ struct FrameShared {
   RenderList list;
   FrameSemantics semantics;
   std::vector<Eigen::AlignedBox3f> itemBounds;
+};
+
+// A product drawn and queued for read-back, waiting to be collected.
+struct PendingProduct {
+  std::shared_ptr<ProductFrame> job;
+  std::shared_ptr<FrameShared> shared;
+  std::shared_ptr<std::vector<Renderer::Coverage>> coverage;
+  size_t cameraIndex = 0;
+  bool toSheet = false;
+  int slot = 0;
 };
 
 // A frame's thumbnail with the tight box and class of every visible entity.
@@ -171,6 +182,64 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   Progress progress(owned - result.resumedFrames, options.progress);
   std::unique_ptr<ChangeRecorder> recorder;
   const Stage original = scene.stage;
+  // Hands a collected product to the pool: annotators, COCO fragment,
+  // thumbnail, encoding, durable writes, then its manifest line.
+  auto submit = [&](const PendingProduct& p) {
+    auto job = p.job;
+    auto shared = p.shared;
+    auto coverage = p.coverage;
+    const size_t cameraIndex = p.cameraIndex;
+    const bool toSheet = p.toSheet;
+    const std::string outDir = options.outDir;
+    pool.submit([job, shared, coverage, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
+                 outDir, &files, &encodeMicros, &annotateMicros, seq = sequence++] {
+      auto jobStart = Clock::now();
+      const FrameSemantics& semantics = shared->semantics;
+      std::vector<EntityCoverage> entityCoverage;
+      for (const auto& c : *coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+      if (annotations)
+        annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
+                 job->annotations);
+      for (const SemanticEntity& e : semantics.entities) {
+        job->entityPaths.push_back(e.primPath);
+        job->entityLabels.push_back(e.labels);
+      }
+      job->semanticLabels = semantics.semanticLabels;
+      job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
+      for (const RenderItem& item : shared->list.items)
+        if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
+      // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
+      std::vector<OutputFile> parts;
+      if (cocoConfig) {
+        std::string text = cocoFragment(writer.rgbPath(job->frame, job->product), job->passes.width,
+                                        job->passes.height, job->annotations, semantics, info.cocoTaxonomy);
+        parts.push_back({cocoFragmentPath(job->frame, job->product), std::vector<uint8_t>(text.begin(), text.end())});
+      }
+      if (toSheet)
+        parts.push_back({contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, *coverage)});
+      auto encodeStart = Clock::now();
+      annotateMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(encodeStart - jobStart).count());
+      std::vector<OutputFile> encoded = writer.encode(*job);
+      const size_t datasetFiles = encoded.size();  // the hidden parts are not counted
+      for (OutputFile& part : parts) encoded.push_back(std::move(part));
+      writeFilesDurably(outDir, encoded);
+      ManifestEntry entry{job->frame, uint32_t(job->product), {}};
+      for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
+      manifest.commit(seq, std::move(entry));
+      files += datasetFiles;
+      encodeMicros +=
+          uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - encodeStart).count());
+    });
+  };
+  std::optional<PendingProduct> pending;
+  uint64_t queued = 0;
+  auto collectPending = [&] {
+    if (!pending) return;
+    renderer.collect(pending->slot, pending->job->passes);
+    submit(*pending);
+    pending.reset();
+  };
+
 
   for (uint64_t iteration = 0; iteration < plan.iterations; ++iteration) {
     const uint64_t first = iteration * plan.framesPerIteration;
@@ -229,53 +298,17 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         job->camera = list.cameras[cameraIndex];
         job->metersPerUnit = list.metersPerUnit;
         auto renderStart = Clock::now();
-        renderer.render(list, cameraIndex, job->passes, passes);
+        // Draw this product and start its read-back; while the GPU works,
+        // collect the previous product (its read-back is done by now) and
+        // hand it to the pool.
+        const int slot = int(queued++ & 1);
+        renderer.queue(list, cameraIndex, passes, slot);
         auto coverage = std::make_shared<std::vector<Renderer::Coverage>>();
         const bool toSheet = product == 0 && sheetFrames.count(frame);
         if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, *coverage);
+        collectPending();
+        pending = PendingProduct{job, shared, coverage, cameraIndex, toSheet, slot};
         result.stages.render += since(renderStart);
-        const std::string outDir = options.outDir;
-        // Annotators, COCO fragment, thumbnail, encoding and writing all run
-        // on the pool; the main thread goes on to the next frame.
-        pool.submit([job, shared, coverage, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
-                     outDir, &files, &encodeMicros, &annotateMicros, seq = sequence++] {
-          auto jobStart = Clock::now();
-          const FrameSemantics& semantics = shared->semantics;
-          std::vector<EntityCoverage> entityCoverage;
-          for (const auto& c : *coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-          if (annotations)
-            annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
-                     job->annotations);
-          for (const SemanticEntity& e : semantics.entities) {
-            job->entityPaths.push_back(e.primPath);
-            job->entityLabels.push_back(e.labels);
-          }
-          job->semanticLabels = semantics.semanticLabels;
-          job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
-          for (const RenderItem& item : shared->list.items)
-            if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
-          // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
-          std::vector<OutputFile> parts;
-          if (cocoConfig) {
-            std::string text = cocoFragment(writer.rgbPath(job->frame, job->product), job->passes.width,
-                                            job->passes.height, job->annotations, semantics, info.cocoTaxonomy);
-            parts.push_back({cocoFragmentPath(job->frame, job->product), std::vector<uint8_t>(text.begin(), text.end())});
-          }
-          if (toSheet)
-            parts.push_back({contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, *coverage)});
-          auto encodeStart = Clock::now();
-          annotateMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(encodeStart - jobStart).count());
-          std::vector<OutputFile> encoded = writer.encode(*job);
-          const size_t datasetFiles = encoded.size();  // the hidden parts are not counted
-          for (OutputFile& part : parts) encoded.push_back(std::move(part));
-          writeFilesDurably(outDir, encoded);
-          ManifestEntry entry{job->frame, uint32_t(job->product), {}};
-          for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
-          manifest.commit(seq, std::move(entry));
-          files += datasetFiles;
-          encodeMicros +=
-              uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - encodeStart).count());
-        });
       }
       log::debug("frame " + std::to_string(frame) + " rendered");
       ++result.frames;
@@ -285,6 +318,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     if (recorder) recorder->recordStop(scene.stage);
     runtime.destroy();
   }
+  collectPending();
   progress.finish();
   scene.stage = original;
   if (recorder) recorder->close();
