@@ -31,7 +31,12 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
       ->allow_extra_args(false);
 }
 
-void addBackendArgs(CLI::App& cmd, BackendArgs& args) {
+void addImageArgs(CLI::App& cmd, ImageArgs& args) {
+  cmd.add_option("--resolution", args.resolution, "Image size, e.g. 640x480 (overrides render.resolution)")
+      ->type_name("WxH");
+  cmd.add_option("--subframes", args.subframes, "Anti-aliasing samples (overrides render.subframes)")
+      ->check(CLI::Range(1, 64))
+      ->type_name("K");
   cmd.add_option("--backend", args.backend,
                  "GL back end: auto (an EGL GPU when present, else OSMesa), osmesa (CPU), egl (GPU, or Mesa's "
                  "surfaceless llvmpipe without one); overrides render.backend")
@@ -50,6 +55,19 @@ std::pair<int, int> parseResolution(const std::string& text) {
     throw SceneError(SourceLoc{"--resolution", 0, 0},
                      "expected WIDTHxHEIGHT with each side 1 to 16384 (e.g. 640x480), found '" + text + "'");
   return {std::stoi(m[1]), std::stoi(m[2])};
+}
+
+RenderOverrides renderOverrides(const ImageArgs& args) {
+  RenderOverrides o;
+  if (!args.resolution.empty()) {
+    auto [w, h] = parseResolution(args.resolution);
+    o.width = w;
+    o.height = h;
+  }
+  o.subframes = args.subframes;
+  if (!args.backend.empty()) o.backend = args.backend;
+  o.gpu = args.gpu;
+  return o;
 }
 
 namespace {

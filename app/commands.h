@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "run/scene_setup.h"
+
 namespace sdg::cli {
 
 // Exit codes shell scripts and schedulers can rely on.
@@ -30,12 +32,16 @@ std::pair<int, int> parseResolution(const std::string& text);
 // SCENE, --set, --plugin and --asset-root, shared by every scene command.
 void addSceneArgs(CLI::App& cmd, SceneArgs& args);
 
-// --backend and --gpu, shared by run and render.
-struct BackendArgs {
-  std::string backend;  // "" = render.backend
+// --resolution, --subframes, --backend and --gpu, shared by run and render.
+struct ImageArgs {
+  std::string resolution;  // "" = render.resolution
+  std::optional<int> subframes;
+  std::string backend;     // "" = render.backend
   int gpu = -1;
 };
-void addBackendArgs(CLI::App& cmd, BackendArgs& args);
+void addImageArgs(CLI::App& cmd, ImageArgs& args);
+// The overrides they give (a bad --resolution is a usage error, exit 2).
+RenderOverrides renderOverrides(const ImageArgs& args);
 
 void addValidate(CLI::App& app, int& exitCode);
 void addInspect(CLI::App& app, int& exitCode);

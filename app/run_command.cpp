@@ -28,15 +28,13 @@ struct RunArgs {
   std::string out;
   bool overwrite = false;
   unsigned threads = 0;
-  std::string resolution;
-  std::optional<int> subframes;
+  ImageArgs image;
   std::string summary;
   std::string saveStage;
   std::optional<uint64_t> iterations;
   std::string shard;
   std::optional<uint64_t> shardIndex, shardCount;
   bool resume = false;
-  BackendArgs backend;
 };
 
 // Frames per iteration and iterations from the scene, then the flags.
@@ -71,11 +69,7 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->add_option("--threads", args->threads, "Encoding and writing threads (default: one per core)")
       ->check(CLI::Range(1u, 256u))
       ->type_name("N");
-  cmd->add_option("--resolution", args->resolution, "Image size, e.g. 640x480 (overrides render.resolution)")
-      ->type_name("WxH");
-  cmd->add_option("--subframes", args->subframes, "Anti-aliasing samples (overrides render.subframes)")
-      ->check(CLI::Range(1, 64))
-      ->type_name("K");
+  addImageArgs(*cmd, args->image);
   cmd->add_option("--summary", args->summary, "Also write the run summary (JSON) to this file")
       ->type_name("FILE.json");
   cmd->add_flag("--no-render", args->noRender, "Step behaviors only; write no images (use with --record)");
@@ -96,7 +90,6 @@ void addRun(CLI::App& app, int& exitCode) {
       ->type_name("i/k");
   cmd->add_option("--shard-index", args->shardIndex, "Same as the i of --shard")->type_name("i");
   cmd->add_option("--shard-count", args->shardCount, "Same as the k of --shard")->type_name("k");
-  addBackendArgs(*cmd, args->backend);
   cmd->add_flag("--resume", args->resume,
                 "Continue an interrupted run in --out: keep frames the manifest lists with matching files, redo the rest");
   cmd->footer(
@@ -120,14 +113,7 @@ void addRun(CLI::App& app, int& exitCode) {
       options.threads = args->threads;
       options.recordPath = args->record;
       options.saveStagePath = args->saveStage;
-      options.subframes = args->subframes;
-      if (!args->backend.backend.empty()) options.backend.backend = args->backend.backend;
-      options.backend.gpu = args->backend.gpu;
-      if (!args->resolution.empty()) {
-        auto [w, h] = parseResolution(args->resolution);
-        options.width = w;
-        options.height = h;
-      }
+      options.render = renderOverrides(args->image);
       options.progress = Progress::stderrIsTerminal() && log::enabled(log::Level::Info);
       DatasetRunResult result = runDataset(loaded, options);
       std::string summary =

@@ -255,9 +255,14 @@ class VolumeStackRandomizer final : public Behavior {
       }
   }
 
-  StackOptions stackOptions() const {
+  // The run's physics section, or its defaults when run without one.
+  const PhysicsSettings& physicsSettings() const {
     static const PhysicsSettings defaults;
-    const PhysicsSettings& settings = context().physics ? *context().physics : defaults;
+    return context().physics ? *context().physics : defaults;
+  }
+
+  StackOptions stackOptions() const {
+    const PhysicsSettings& settings = physicsSettings();
     const StageMetadata& meta = stage().metadata();
     const double mpu = meta.metersPerUnit;
     StackOptions o;
@@ -280,8 +285,7 @@ class VolumeStackRandomizer final : public Behavior {
   }
 
   void reportSettling(const StackResult& result) {
-    static const PhysicsSettings defaults;
-    const PhysicsSettings& settings = context().physics ? *context().physics : defaults;
+    const PhysicsSettings& settings = physicsSettings();
     std::vector<std::string> unsettled;
     for (const SurfaceSettleReport& r : result.reports) {
       nlohmann::ordered_json j;

@@ -19,16 +19,6 @@ using DestroyFn = void (*)(OSMesaContext);
 
 namespace sdg {
 
-std::string GlContext::rendererName() const {
-  const GLubyte* s = gl_.glGetString(GL_RENDERER);
-  return s ? reinterpret_cast<const char*>(s) : "";
-}
-
-std::string GlContext::versionName() const {
-  const GLubyte* s = gl_.glGetString(GL_VERSION);
-  return s ? reinterpret_cast<const char*>(s) : "";
-}
-
 namespace {
 
 class OsMesaContext final : public GlContext {
@@ -82,14 +72,5 @@ class OsMesaContext final : public GlContext {
 
 std::unique_ptr<GlContext> createOsMesaContext() { return std::make_unique<OsMesaContext>(); }
 
-std::unique_ptr<GlContext> createGlContext(const std::string& backend, int gpu) {
-  if (backend == "osmesa") {
-    if (gpu >= 0) throw RunError("--gpu " + std::to_string(gpu) + " needs the EGL back end, not osmesa");
-    return createOsMesaContext();
-  }
-  if (backend == "egl") return createEglContext(EglSelection{gpu, false});
-  if (gpu >= 0 || eglGpuAvailable()) return createEglContext(EglSelection{gpu, true});
-  return createOsMesaContext();
-}
 
 }  // namespace sdg

@@ -8,7 +8,14 @@ inline constexpr int kMaxLights = 16;
 
 // Fragment programs are compiled from several strings: this header, the
 // common functions, then their own body.
-inline constexpr const char* kFragmentHeader = "#version 330 core\n";
+// The four render targets every frame pass writes (colour, normal and
+// distance, image-plane distance, instance id), after the version line.
+inline constexpr const char* kFragmentHeader = R"(#version 330 core
+layout(location = 0) out vec4 oColor;
+layout(location = 1) out vec4 oNormalDistance;
+layout(location = 2) out float oPlaneDistance;
+layout(location = 3) out uint oInstanceId;
+)";
 
 inline constexpr const char* kCommonFunctions = R"(
 const float PI = 3.14159265358979;
@@ -51,10 +58,6 @@ inline constexpr const char* kSceneFragment = R"(
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 in vec2 vUv;
-layout(location = 0) out vec4 oColor;
-layout(location = 1) out vec4 oNormalDistance;
-layout(location = 2) out float oPlaneDistance;
-layout(location = 3) out uint oInstanceId;
 
 uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
@@ -192,10 +195,6 @@ void main() {
 
 inline constexpr const char* kSkyFragment = R"(
 in vec2 vNdc;
-layout(location = 0) out vec4 oColor;
-layout(location = 1) out vec4 oNormalDistance;
-layout(location = 2) out float oPlaneDistance;
-layout(location = 3) out uint oInstanceId;
 uniform mat4 uWorldFromClip;
 uniform vec3 uCameraPosition;
 uniform sampler2D uDome;

@@ -63,8 +63,8 @@ std::vector<uint8_t> sheetTile(uint64_t frame, const FramePasses& passes, const 
   return contactSheetTile(frame, passes.rgba, passes.width, passes.height, boxes);
 }
 
-// Owned frames of one iteration whose every product the manifest lists
-// with matching files.
+// Frames whose every render product the folder's manifests list with files
+// that still match their SHA-256 (what --resume may keep).
 std::set<uint64_t> finishedFrames(const std::string& dir, size_t products) {
   std::map<uint64_t, size_t> complete;
   for (const ManifestEntry& e : readManifests(dir)) {
@@ -130,7 +130,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   }
 
   const FramePlan& plan = options.plan;
-  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
+  const RenderSettings settings = renderSettingsFor(scene, options.render);
   RunInfo info;
   info.sceneHash = fileHash(scene.sourcePath);
   info.seed = options.seed;
@@ -159,7 +159,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
           .string());
 
-  std::unique_ptr<GlContext> context = glContextFor(scene, options.backend);
+  std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
   Renderer renderer(*context, loaded.assets, settings);
   result.renderer = context->rendererName();
   result.backend = context->backend();

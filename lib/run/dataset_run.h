@@ -23,11 +23,10 @@ struct DatasetRunOptions {
   bool overwrite = false;
   bool resume = false;  // keep frames the manifest lists whose files still match
   unsigned threads = 0;  // 0 = one per core
-  std::optional<int> width, height, subframes;
+  RenderOverrides render;
   std::string recordPath;
   std::string saveStagePath;  // --save-stage: the scene after the pre-roll
   bool progress = false;  // draw a progress bar on stderr
-  BackendChoice backend;
 };
 
 // Seconds spent in each stage of the run (annotate and encode+write run on

@@ -64,11 +64,12 @@ RunInfo readRunInfo(const std::string& dir) {
   std::stringstream text;
   text << in.rdbuf();
   nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  const std::string corrupt = runInfoPath(dir) + " is corrupt; delete the folder's .sdgbehave/ to start over";
+  if (j.is_discarded()) throw RunError(corrupt);
   try {
-    if (j.is_discarded()) throw nlohmann::json::other_error::create(0, "not JSON", nullptr);
     return RunInfo::fromJson(j);
   } catch (const nlohmann::json::exception&) {
-    throw RunError(runInfoPath(dir) + " is corrupt");
+    throw RunError(corrupt);
   }
 }
 

@@ -29,8 +29,8 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
       throw SceneError(SourceLoc{"--camera", 0, 0}, text::quote(wanted) + " is not a Camera of the scene; cameras: " +
                                                         text::join(names, ", ") + text::didYouMean(wanted, names));
   }
-  const RenderSettings settings = renderSettingsFor(scene, options.width, options.height, options.subframes);
-  std::unique_ptr<GlContext> context = glContextFor(scene, options.backend);
+  const RenderSettings settings = renderSettingsFor(scene, options.render);
+  std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
   Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;
   renderer.render(list, index, frame);

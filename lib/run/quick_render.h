@@ -11,8 +11,7 @@ namespace sdg {
 struct QuickRenderOptions {
   std::string camera;  // "" = the first of capture.cameras, else the first Camera
   std::string outputPath;
-  std::optional<int> width, height, subframes;  // override render.*
-  BackendChoice backend;
+  RenderOverrides render;
 };
 
 struct QuickRenderResult {

@@ -16,18 +16,17 @@ BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins) {
   return registry;
 }
 
-RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
-                                 std::optional<int> subframes) {
+RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& overrides) {
   RenderSettings settings;
   const Vec2i resolution = scene.render.get("resolution").get<Vec2i>();
-  settings.width = width.value_or(resolution.x());
-  settings.height = height.value_or(resolution.y());
-  settings.subframes = subframes.value_or(int(scene.render.getUInt("subframes")));
+  settings.width = overrides.width.value_or(resolution.x());
+  settings.height = overrides.height.value_or(resolution.y());
+  settings.subframes = overrides.subframes.value_or(int(scene.render.getUInt("subframes")));
   return settings;
 }
 
-std::unique_ptr<GlContext> glContextFor(const Scene& scene, const BackendChoice& choice) {
-  return createGlContext(choice.backend.value_or(scene.render.getString("backend")), choice.gpu);
+std::unique_ptr<GlContext> glContextFor(const Scene& scene, const RenderOverrides& overrides) {
+  return createGlContext(overrides.backend.value_or(scene.render.getString("backend")), overrides.gpu);
 }
 
 PhysicsSettings physicsSettingsFor(const Scene& scene) {

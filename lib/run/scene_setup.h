@@ -29,17 +29,17 @@ struct LoadedScene {
   AssetResolver assets;
 };
 
-// The scene's render settings with command-line overrides applied.
-RenderSettings renderSettingsFor(const Scene& scene, std::optional<int> width, std::optional<int> height,
-                                 std::optional<int> subframes);
-
-// --backend / --gpu over the scene's render.backend.
-struct BackendChoice {
+// Command-line overrides of the scene's render section (--resolution,
+// --subframes, --backend, --gpu), shared by `run` and `render`.
+struct RenderOverrides {
+  std::optional<int> width, height, subframes;
   std::optional<std::string> backend;  // auto | osmesa | egl
   int gpu = -1;                        // EGL GPU index; -1: the first
 };
+// The scene's render settings with the overrides applied.
+RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& overrides);
 // The GL context for a run or a picture (RunError naming what was tried).
-std::unique_ptr<GlContext> glContextFor(const Scene& scene, const BackendChoice& choice);
+std::unique_ptr<GlContext> glContextFor(const Scene& scene, const RenderOverrides& overrides);
 
 // The scene's physics section as the settings the stacking code reads.
 PhysicsSettings physicsSettingsFor(const Scene& scene);

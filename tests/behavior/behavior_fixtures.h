@@ -3,6 +3,7 @@
 // behaviors, and a runtime over it.
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -20,11 +21,14 @@ struct BehaviorScene {
   AssetResolver assets{{SDG_SOURCE_DIR "/scenes"}};
   std::unique_ptr<BehaviorRuntime> runtime;
 
-  explicit BehaviorScene(const std::string& yaml, int64_t seed = 0) {
+  // `configure` may add to the context (physics settings, run hooks).
+  explicit BehaviorScene(const std::string& yaml, int64_t seed = 0,
+                         const std::function<void(BehaviorContext&)>& configure = {}) {
     scene = buildScene(sceneDocumentFromText(yaml, "t.yaml"), registry.catalog());
     BehaviorContext context;
     context.assets = &assets;
     context.runSeed = seed;
+    if (configure) configure(context);
     runtime = std::make_unique<BehaviorRuntime>(scene.stage, registry, context);
     runtime->init();
   }

@@ -6,15 +6,12 @@
 #include <array>
 #include <cmath>
 
-#include "assets/asset_resolver.h"
-#include "behavior/runtime.h"
-#include "behaviors/builtin_behaviors.h"
+#include "behavior/behavior_fixtures.h"
 #include "core/diagnostics.h"
 #include "physics/collider.h"
 #include "physics/convex_hull.h"
 #include "physics/physics_settings.h"
 #include "run/preroll.h"
-#include "scene_io/scene_loader.h"
 
 using namespace sdg;
 
@@ -36,24 +33,27 @@ std::string stackScene(const std::string& assets, const std::string& range, int 
 }
 
 struct StackFixture {
-  BehaviorRegistry registry = builtinRegistry();
-  Scene scene;
   AssetResolver assets{{SDG_SOURCE_DIR "/tests/data/meshes", SDG_SOURCE_DIR "/scenes"}};
   PhysicsSettings physics;
   std::vector<nlohmann::ordered_json> reports;
   std::vector<Payload> replies;
-  std::unique_ptr<BehaviorRuntime> runtime;
+  test::BehaviorScene behaviors;
+  Scene& scene;
+  BehaviorRuntime* runtime;
 
-  explicit StackFixture(const std::string& yaml, int64_t seed = 0) {
-    scene = buildScene(sceneDocumentFromText(yaml, "t.yaml"), registry.catalog());
-    BehaviorContext context;
-    context.assets = &assets;
-    context.runSeed = seed;
-    context.physics = &physics;
-    context.hooks.report = [this](const std::string&, const nlohmann::ordered_json& r) { reports.push_back(r); };
-    runtime = std::make_unique<BehaviorRuntime>(scene.stage, registry, context);
+  explicit StackFixture(const std::string& yaml, int64_t seed = 0)
+      : behaviors(yaml, seed,
+                  [this](BehaviorContext& context) {
+                    context.assets = &assets;
+                    context.physics = &physics;
+                    context.hooks.report = [this](const std::string&, const nlohmann::ordered_json& r) {
+                      reports.push_back(r);
+                    };
+                  }),
+        scene(behaviors.scene),
+        runtime(behaviors.runtime.get()) {
+    // INIT is delivered on the first update, so subscribing here still sees it.
     runtime->events().subscribe(kOut, [this](const Payload& p) { replies.push_back(p); });
-    runtime->init();
   }
   // Publishes an action and runs updates until the reply arrives.
   void act(const std::string& action, const std::string& prim = "") {

@@ -15,12 +15,8 @@ import tempfile
 import numpy as np
 from PIL import Image
 
-failures = []
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
+from checklib import check, failures, finish
 
 
 def run(binary, scene, out, *flags):
@@ -64,11 +60,7 @@ def main():
         bad = run(binary, scene, f"{tmp}/z", "--backend", "egl", "--gpu", "7")
         check(bad.returncode == 1 and "EGL back end" in bad.stderr and "--gpu 7" in bad.stderr,
               f"--gpu 7: {bad.returncode} {bad.stderr.strip()}")
-    if failures:
-        print("\n".join(failures[:30]))
-        return 1
-    print("ok")
-    return 0
+    return finish("ok")
 
 
 if __name__ == "__main__":

@@ -5,8 +5,6 @@ dtypes; the pre-roll stacked every pallet (settled, in the summary, and the
 stacked cartons and bins are labelled entities in the boxes); the contact
 sheet exists. The same seed twice gives byte-identical files, --threads 1
 and --threads 2 too, and another seed different ones."""
-import glob
-import hashlib
 import json
 import os
 import subprocess
@@ -16,24 +14,13 @@ import tempfile
 import numpy as np
 from PIL import Image
 
-failures = []
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
+from checklib import check, dataset_hashes, failures, finish
 
 
 def run(binary, scene, out, *flags):
     subprocess.run([binary, "run", scene, "--out", out, "--resolution", "128x128", *flags], check=True,
                    capture_output=True)
-
-
-def hashes(folder):
-    # run_summary.json holds timings: the one file allowed to differ.
-    return {os.path.relpath(p, folder): hashlib.sha256(open(p, "rb").read()).hexdigest()
-            for p in sorted(glob.glob(os.path.join(folder, "**", "*"), recursive=True))
-            if os.path.isfile(p) and not p.endswith("run_summary.json")}
 
 
 def check_folder(out):
@@ -86,18 +73,14 @@ def main():
         check_folder(a)
         run(binary, scene, b, "--seed", "10", "--threads", "1")
         run(binary, scene, c, "--seed", "11", "--threads", "2")
-        ha, hb, hc = hashes(a), hashes(b), hashes(c)
+        ha, hb, hc = dataset_hashes(a), dataset_hashes(b), dataset_hashes(c)
         check(ha == hb, "--threads 1 and --threads 2 (same seed) differ: " +
               ", ".join(k for k in ha if ha.get(k) != hb.get(k))[:300])
         run(binary, scene, d, "--seed", "10", "--threads", "2")
-        check(ha == hashes(d), "the same seed twice gave different files")
+        check(ha == dataset_hashes(d), "the same seed twice gave different files")
         check(ha.keys() == hc.keys() and ha != hc, "another seed gave the same files")
         check(ha["rgb_0000.png"] != hc["rgb_0000.png"], "another seed gave the same first image")
-    if failures:
-        print("\n".join(failures[:40]))
-        return 1
-    print(f"ok: {len(ha)} files checked, deterministic across threads and runs")
-    return 0
+    return finish(f"ok: {len(ha)} files checked, deterministic across threads and runs")
 
 
 if __name__ == "__main__":

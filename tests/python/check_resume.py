@@ -15,15 +15,9 @@ import time
 
 from PIL import Image
 
-from dataset_files import dataset_hashes
+from checklib import check, dataset_hashes, failures, finish
 
-failures = []
 FLAGS = ["--frames", "12", "--iterations", "2", "--resolution", "128x128", "--threads", "2"]
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
 
 
 def manifest_lines(folder):
@@ -87,11 +81,7 @@ def main():
                 subprocess.run(["umount", tiny], capture_output=True)
         else:
             print("note: cannot mount a tmpfs here; the full-disk case was not run")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print("ok")
-    return 0
+    return finish("ok")
 
 
 if __name__ == "__main__":

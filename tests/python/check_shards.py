@@ -5,20 +5,13 @@ to a single run (COCO file, contact sheet and manifest included); two shards
 running at the same time into one folder too. Shard numbers come from Slurm
 array and Kubernetes Indexed Job variables; bad ones exit 2. `verify`
 passes on the result and fails (exit 1) on a changed file."""
-import glob
 import os
 import subprocess
 import sys
 import tempfile
 
-from dataset_files import dataset_hashes
+from checklib import check, dataset_hashes, failures, finish
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
 
 
 def run(binary, scene, out, *flags, env=None, check_rc=True):
@@ -89,11 +82,7 @@ def main():
             f.write(b"\x00\x01")
         p = subprocess.run([binary, "verify", whole], capture_output=True, text=True)
         check(p.returncode == 1 and "rgb_0003.png: sha256 differs" in p.stdout, f"verify after a change: {p.stdout}")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print("ok")
-    return 0
+    return finish("ok")
 
 
 if __name__ == "__main__":

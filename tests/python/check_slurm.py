@@ -15,7 +15,7 @@ import sys
 import tempfile
 import time
 
-from dataset_files import dataset_hashes
+from checklib import dataset_hashes
 
 SKIP = 77
 

@@ -12,12 +12,8 @@ import tempfile
 import yaml
 from PIL import Image
 
-failures = []
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
+from checklib import check, failures, finish
 
 
 def main():
@@ -52,11 +48,7 @@ def main():
                               "--set", "physics.settle_angular_speed=0"], capture_output=True, text=True)
         check(bad.returncode == 1, f"require_settled exit {bad.returncode}")
         check("still moves" in bad.stderr and "/World/Pallets/A" in bad.stderr, f"message: {bad.stderr.strip()}")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print("ok")
-    return 0
+    return finish("ok")
 
 
 if __name__ == "__main__":
