@@ -1,17 +1,20 @@
 // Render benchmark: frames per second at 512 x 512 with every pass read
 // back, for a warehouse-like scene (4 pallets, 60 boxes, a target, 3 lights)
-// and for 10 / 100 / 1,000 / 10,000 objects sharing one mesh. Prints one
+// and for 10 / 100 / 1,000 / 10,000 objects sharing one mesh, or for a scene
+// file given as the argument (its first camera). Prints one
 // JSON object per figure (median, min and max of 5 runs). llvmpipe's thread
 // count comes from LP_NUM_THREADS, so the script runs this once per setting.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "assets/asset_resolver.h"
 #include "render/renderer.h"
+#include "run/scene_setup.h"
 #include "writers/png_encoder.h"
 
 using namespace sdg;
@@ -104,7 +107,7 @@ void measure(const std::string& name, const Stage& stage, Renderer& renderer, in
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   // SDG_BACKEND=egl measures the EGL back end (a GPU where there is one).
   const char* backend = std::getenv("SDG_BACKEND");
   auto context = createGlContext(backend ? backend : "osmesa", -1);
@@ -112,6 +115,14 @@ int main() {
                context->rendererName().c_str());
   AssetResolver assets;
   RenderSettings settings;  // 512 x 512, one sample, all passes read back
+  if (argc > 1) {
+    // A scene file (e.g. one written by `run --save-stage`): its first camera,
+    // its stage as written (behaviors and events do not run here).
+    LoadedScene loaded = loadSceneForRun(SceneRequest{argv[1], {}, {}, {}});
+    Renderer renderer(*context, loaded.assets, settings);
+    measure("render 512x512 all passes: " + std::filesystem::path(argv[1]).filename().string(), loaded.scene.stage, renderer, 10);
+    return 0;
+  }
   Renderer renderer(*context, assets, settings);
   measure("render 512x512 all passes: 4 pallets + 60 boxes + target + 3 lights", warehouseLike(), renderer, 10);
   {

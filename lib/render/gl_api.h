@@ -14,6 +14,7 @@ namespace sdg {
   X(PFNGLGETERRORPROC, glGetError)                                                            \
   X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                                      \
   X(PFNGLVIEWPORTPROC, glViewport)                                                            \
+  X(PFNGLSCISSORPROC, glScissor)                                                              \
   X(PFNGLCLEARBUFFERFVPROC, glClearBufferfv)                                                  \
   X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                                                \
   X(PFNGLENABLEPROC, glEnable)                                                                \
@@ -52,6 +53,9 @@ namespace sdg {
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray)                              \
   X(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer)                                      \
   X(PFNGLDRAWELEMENTSPROC, glDrawElements)                                                    \
+  X(PFNGLDRAWELEMENTSINSTANCEDPROC, glDrawElementsInstanced)                                  \
+  X(PFNGLVERTEXATTRIBIPOINTERPROC, glVertexAttribIPointer)                                    \
+  X(PFNGLVERTEXATTRIBDIVISORPROC, glVertexAttribDivisor)                                      \
   X(PFNGLCREATESHADERPROC, glCreateShader)                                                    \
   X(PFNGLSHADERSOURCEPROC, glShaderSource)                                                    \
   X(PFNGLCOMPILESHADERPROC, glCompileShader)                                                  \

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "assets/image.h"
 #include "core/diagnostics.h"
 #include "render/camera_math.h"
 #include "render/shaders.h"
+#include "render/shadow_frusta.h"
 #include "stage/xform.h"
 
 namespace sdg {
@@ -23,17 +25,17 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBaseColor) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uInstanceId) X(uLightCount) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightShadow) X(uLightType) X(uMetallic) X(uMetersPerUnit) X(uNormalMatrix) X(uProjectUvw) X(uRoughness) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uTextureRotate) X(uTextureScale) X(uViewProjection) X(uWorldFromLocal)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection)
 
 // Uniform locations, looked up once per program instead of per draw.
 struct Renderer::Uniforms {
 #define SDG_UNIFORM_FIELD(name) int name = -1;
   SDG_SCENE_UNIFORMS(SDG_UNIFORM_FIELD)
 #undef SDG_UNIFORM_FIELD
-  int shadowWorldFromLocal = -1, shadowLightViewProjection = -1;
 };
 
 struct Renderer::GpuMesh {
+  uint32_t slot = 0;  // index in meshBySlot_
   unsigned vao = 0;
   unsigned buffers[4] = {0, 0, 0, 0};
   std::vector<MeshPart> parts;
@@ -57,11 +59,12 @@ unsigned compile(const GlApi& gl, GLenum type, std::initializer_list<const char*
   return shader;
 }
 
-// Vertex shaders are one string; fragment shaders get the shared header and
-// common functions first.
-unsigned link(const GlApi& gl, const char* vertex, const char* fragmentBody, bool common = true) {
+// Vertex shaders are one string; fragment shaders get the shared header,
+// `defines` and the common functions first.
+unsigned link(const GlApi& gl, const char* vertex, const char* fragmentBody, bool common = true, const char* defines = "") {
   unsigned vs = compile(gl, GL_VERTEX_SHADER, {vertex});
-  unsigned fs = common ? compile(gl, GL_FRAGMENT_SHADER, {shaders::kFragmentHeader, shaders::kCommonFunctions, fragmentBody})
+  unsigned fs = common ? compile(gl, GL_FRAGMENT_SHADER,
+                                 {shaders::kFragmentHeader, defines, shaders::kCommonFunctions, fragmentBody})
                        : compile(gl, GL_FRAGMENT_SHADER, {fragmentBody});
   unsigned program = gl.glCreateProgram();
   gl.glAttachShader(program, vs);
@@ -118,28 +121,35 @@ int lightTypeCode(LightKind kind) {
   return 0;
 }
 
+// The scene shader's ADD_LIGHTS line gets one call per light, its type and
+// shadow slot as literals.
+void appendLightCall(std::string& calls, int index, int type, int shadowSlot) {
+  calls += " radiance += lightContribution(";
+  calls += std::to_string(index);
+  calls += ", ";
+  calls += std::to_string(type);
+  calls += ", ";
+  calls += std::to_string(shadowSlot);
+  calls += ", n, v, base, roughness, metallic);";
+}
+
 }  // namespace
 
 
 Renderer::Renderer(GlContext& context, const AssetResolver& assets, const RenderSettings& settings)
     : context_(context), gl_(context.gl()), assets_(assets), settings_(settings) {
-  sceneProgram_ = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment);
   shadowProgram_ = link(gl_, shaders::kShadowVertex, shaders::kShadowFragment, false);
-  uniforms_ = std::make_unique<Uniforms>();
-#define SDG_UNIFORM_LOOKUP(name) uniforms_->name = gl_.glGetUniformLocation(sceneProgram_, #name);
-  SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
-#undef SDG_UNIFORM_LOOKUP
-  uniforms_->shadowWorldFromLocal = gl_.glGetUniformLocation(shadowProgram_, "uWorldFromLocal");
-  uniforms_->shadowLightViewProjection = gl_.glGetUniformLocation(shadowProgram_, "uLightViewProjection");
+  shadowLightViewProjection_ = gl_.glGetUniformLocation(shadowProgram_, "uLightViewProjection");
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
   maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment, false);
   depthProgram_ = link(gl_, shaders::kDepthVertex, shaders::kShadowFragment, false);
-  depthWorldFromLocal_ = gl_.glGetUniformLocation(depthProgram_, "uWorldFromLocal");
   depthViewProjection_ = gl_.glGetUniformLocation(depthProgram_, "uViewProjection");
   gl_.glGenFramebuffers(1, &maskFramebuffer_);
   gl_.glGenVertexArrays(1, &emptyVao_);
+  gl_.glGenBuffers(1, &instanceBuffer_);
+  gl_.glGenBuffers(1, &maskInstanceBuffer_);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
   GLenum none = GL_NONE;
   gl_.glDrawBuffers(1, &none);
@@ -150,6 +160,8 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
 
 Renderer::~Renderer() {
   for (ReadSlot& r : readSlots_) gl_.glDeleteBuffers(4, r.buffers);
+  gl_.glDeleteBuffers(1, &instanceBuffer_);
+  gl_.glDeleteBuffers(1, &maskInstanceBuffer_);
   for (auto& [key, m] : meshes_) {
     gl_.glDeleteVertexArrays(1, &m->vao);
     gl_.glDeleteBuffers(4, m->buffers);
@@ -166,7 +178,7 @@ Renderer::~Renderer() {
   gl_.glDeleteFramebuffers(1, &maskFramebuffer_);
   gl_.glDeleteFramebuffers(1, &framebuffer_);
   gl_.glDeleteFramebuffers(1, &shadowFramebuffer_);
-  gl_.glDeleteProgram(sceneProgram_);
+  for (auto& [lights, p] : scenePrograms_) gl_.glDeleteProgram(p.program);
   gl_.glDeleteProgram(shadowProgram_);
 }
 
@@ -192,10 +204,58 @@ const Renderer::GpuMesh& Renderer::mesh(const RenderItem& item) {
   gl_.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->buffers[3]);
   gl_.glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(data.indices.size() * sizeof(uint32_t)), data.indices.data(),
                    GL_STATIC_DRAW);
+  // Attributes 3-13 come from the instance buffer, one record per instance;
+  // bindBatch() points them at a batch's records.
+  for (unsigned location = 3; location <= 13; ++location) {
+    gl_.glEnableVertexAttribArray(location);
+    gl_.glVertexAttribDivisor(location, 1);
+  }
   gl_.glBindVertexArray(0);
   m->parts = std::move(data.parts);
   m->bounds = data.bounds;
+  m->slot = uint32_t(meshBySlot_.size());
+  meshBySlot_.push_back(m.get());
   return *meshes_.emplace(key, std::move(m)).first->second;
+}
+
+void Renderer::resolveMeshes(const RenderList& list) {
+  meshSlots_.resize(list.items.size());
+  for (size_t i = 0; i < list.items.size(); ++i) meshSlots_[i] = mesh(list.items[i]).slot;
+}
+
+void Renderer::uploadInstances(const InstanceBatches& batches, unsigned buffer) {
+  gl_.glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  // A fresh store each frame: the driver need not wait for draws that still
+  // read the previous frame's records.
+  gl_.glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(batches.records().size() * sizeof(InstanceRecord)),
+                   batches.records().data(), GL_STREAM_DRAW);
+}
+
+const Renderer::GpuMesh& Renderer::bindBatch(const InstanceBatch& batch, unsigned buffer) {
+  const GpuMesh& m = *meshBySlot_[batch.meshSlot];
+  gl_.glBindVertexArray(m.vao);
+  gl_.glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  const GLsizei stride = sizeof(InstanceRecord);
+  const size_t base = size_t(batch.first) * sizeof(InstanceRecord);
+  auto at = [&](size_t offset) { return reinterpret_cast<const void*>(base + offset); };
+  for (unsigned c = 0; c < 4; ++c)
+    gl_.glVertexAttribPointer(3 + c, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, worldFromLocal) + 16 * c));
+  for (unsigned c = 0; c < 3; ++c)
+    gl_.glVertexAttribPointer(7 + c, 3, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, normalMatrix) + 12 * c));
+  gl_.glVertexAttribPointer(10, 3, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, baseColor)));
+  gl_.glVertexAttribPointer(11, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, surface)));
+  gl_.glVertexAttribPointer(12, 4, GL_FLOAT, GL_FALSE, stride, at(offsetof(InstanceRecord, textureTransform)));
+  gl_.glVertexAttribIPointer(13, 1, GL_UNSIGNED_INT, stride, at(offsetof(InstanceRecord, id)));
+  return m;
+}
+
+void Renderer::drawWholeMeshes(const InstanceBatches& batches, unsigned buffer) {
+  for (const InstanceBatch& batch : batches.byMesh()) {
+    const GpuMesh& m = bindBatch(batch, buffer);
+    GLsizei count = 0;
+    for (const MeshPart& part : m.parts) count = std::max<GLsizei>(count, GLsizei(part.firstIndex + part.indexCount));
+    gl_.glDrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr, GLsizei(batch.count));
+  }
 }
 
 const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std::string& primPath) {
@@ -225,10 +285,31 @@ const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std
   return textures_.emplace(path, GpuTexture{t, levels}).first->second;
 }
 
+const Renderer::Uniforms& Renderer::sceneProgram(const std::string& lightCalls) {
+  auto it = scenePrograms_.find(lightCalls);
+  if (it == scenePrograms_.end()) {
+    SceneProgram p;
+    p.program = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment, true, lightCalls.c_str());
+    p.uniforms = std::make_unique<Uniforms>();
+#define SDG_UNIFORM_LOOKUP(name) p.uniforms->name = gl_.glGetUniformLocation(p.program, #name);
+    SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
+#undef SDG_UNIFORM_LOOKUP
+    it = scenePrograms_.emplace(lightCalls, std::move(p)).first;
+  }
+  gl_.glUseProgram(it->second.program);
+  return *it->second.uniforms;
+}
+
+int Renderer::shadowMapSize() const {
+  if (settings_.shadowMapSize > 0) return settings_.shadowMapSize;
+  return std::clamp(std::max(settings_.width, settings_.height), 256, 4096);
+}
+
 Eigen::AlignedBox3d Renderer::sceneBounds(const RenderList& list) {
   Eigen::AlignedBox3d box;
-  for (const RenderItem& item : list.items) {
-    const Eigen::AlignedBox3f& b = mesh(item).bounds;
+  for (size_t i = 0; i < list.items.size(); ++i) {
+    const RenderItem& item = list.items[i];
+    const Eigen::AlignedBox3f& b = meshBySlot_[meshSlots_[i]]->bounds;
     for (int c = 0; c < 8; ++c) {
       Vec3d corner = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
       box.extend((item.worldFromLocal * corner.homogeneous()).head<3>());
@@ -238,55 +319,12 @@ Eigen::AlignedBox3d Renderer::sceneBounds(const RenderList& list) {
   return box;
 }
 
-namespace {
-// A right-handed view looking along `forward` from `eye`.
-Matrix4d lookAlong(const Vec3d& eye, const Vec3d& forward) {
-  Vec3d up = std::fabs(forward.z()) < 0.9 ? Vec3d::UnitZ() : Vec3d::UnitX();
-  Vec3d right = forward.cross(up).normalized();
-  up = right.cross(forward);
-  Matrix4d view = Matrix4d::Identity();
-  view.block<1, 3>(0, 0) = right.transpose();
-  view.block<1, 3>(1, 0) = up.transpose();
-  view.block<1, 3>(2, 0) = -forward.transpose();
-  view.block<3, 1>(0, 3) = -view.block<3, 3>(0, 0) * eye;
-  return view;
-}
-}  // namespace
-
-void Renderer::drawShadowMaps(const RenderList& list) {
-  const Eigen::AlignedBox3d box = sceneBounds(list);
-  const Vec3d centre = box.center();
-  const double radius = std::max(box.diagonal().norm() / 2, 1e-3);
-  for (ShadowSlot& slot : shadowSlots_) {
-    const RenderLight& light = list.lights[slot.light];
-    if (light.kind == LightKind::Distant) {
-      // Orthographic frustum around everything drawn.
-      const Vec3d forward = light.direction.normalized();
-      Matrix4d ortho = Matrix4d::Identity();
-      ortho(0, 0) = ortho(1, 1) = 1.0 / radius;
-      ortho(2, 2) = -2.0 / (4 * radius);
-      ortho(2, 3) = -1.0;
-      slot.viewProjection = ortho * lookAlong(centre - forward * (2 * radius), forward);
-      continue;
-    }
-    // A sphere light: one perspective map from the light toward the scene
-    // (straight down when the light is inside the scene's bounds), up to a
-    // 150 degree cone; points outside it are lit unshadowed.
-    const Vec3d toCentre = centre - light.position;
-    const double distance = toCentre.norm();
-    const bool inside = distance <= radius * 1.01;
-    const Vec3d forward = inside ? Vec3d(-Vec3d::UnitZ()) : Vec3d(toCentre / distance);
-    const double limit = 75.0 * M_PI / 180;
-    const double halfAngle = inside ? limit : std::min(std::asin(radius / distance), limit);
-    const double n = std::max(0.01 * radius, 1e-3), f = distance + radius;
-    Matrix4d perspective = Matrix4d::Zero();
-    perspective(0, 0) = perspective(1, 1) = 1.0 / std::tan(halfAngle);
-    perspective(2, 2) = (f + n) / (n - f);
-    perspective(2, 3) = 2 * f * n / (n - f);
-    perspective(3, 2) = -1.0;
-    slot.viewProjection = perspective * lookAlong(light.position, forward);
-  }
-  const int size = settings_.shadowMapSize;
+void Renderer::drawShadowMaps(const RenderList& list, const RenderCamera& camera) {
+  const Eigen::AlignedBox3d scene = sceneBounds(list);
+  const Eigen::AlignedBox3d receivers = visibleRegion(camera, settings_.width, settings_.height, scene);
+  for (ShadowSlot& slot : shadowSlots_)
+    slot.viewProjection = shadowViewProjection(list.lights[slot.light], receivers, scene);
+  const int size = shadowMapSize();
   if (!shadowAtlas_) {
     shadowAtlas_ = makeTexture(gl_, GL_DEPTH_COMPONENT24, 2 * size, 2 * size, GL_DEPTH_COMPONENT, GL_FLOAT);
     gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -301,9 +339,8 @@ void Renderer::drawShadowMaps(const RenderList& list) {
   // One framebuffer, one clear, a viewport per light: llvmpipe flushes on
   // every framebuffer switch, so tiles of one atlas cost far less than maps.
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
-  gl_.glViewport(0, 0, 2 * size, 2 * size);
   const float one = 1.0f;
-  gl_.glClearBufferfv(GL_DEPTH, 0, &one);
+  gl_.glEnable(GL_SCISSOR_TEST);  // clears only the tiles in use
   gl_.glEnable(GL_DEPTH_TEST);
   gl_.glDepthFunc(GL_LESS);
   gl_.glEnable(GL_POLYGON_OFFSET_FILL);
@@ -311,17 +348,13 @@ void Renderer::drawShadowMaps(const RenderList& list) {
   gl_.glUseProgram(shadowProgram_);
   for (size_t k = 0; k < shadowSlots_.size(); ++k) {
     gl_.glViewport(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
-    setMatrix(gl_, uniforms_->shadowLightViewProjection, shadowSlots_[k].viewProjection);
-    for (const RenderItem& item : list.items) {
-      const GpuMesh& m = mesh(item);
-      setMatrix(gl_, uniforms_->shadowWorldFromLocal, item.worldFromLocal);
-      gl_.glBindVertexArray(m.vao);
-      for (const MeshPart& part : m.parts)
-        gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
-    }
+    gl_.glScissor(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
+    gl_.glClearBufferfv(GL_DEPTH, 0, &one);
+    setMatrix(gl_, shadowLightViewProjection_, shadowSlots_[k].viewProjection);
+    drawWholeMeshes(batches_, instanceBuffer_);
   }
   gl_.glDisable(GL_POLYGON_OFFSET_FILL);
+  gl_.glDisable(GL_SCISSOR_TEST);
 }
 
 void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter) {
@@ -354,47 +387,18 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glEnable(GL_DEPTH_TEST);
   gl_.glDepthFunc(GL_LESS);
 
-  const Uniforms& u = *uniforms_;
-  const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
-  // Depth first, colour writes off: the expensive lighting below then runs
-  // once per visible pixel instead of once per covering triangle.
-  gl_.glUseProgram(depthProgram_);
-  setMatrix(gl_, depthViewProjection_, viewProjection);
-  gl_.glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  for (const RenderItem& item : list.items) {
-    const GpuMesh& m = mesh(item);
-    setMatrix(gl_, depthWorldFromLocal_, item.worldFromLocal);
-    gl_.glBindVertexArray(m.vao);
-    GLsizei count = 0;
-    for (const MeshPart& part : m.parts) count = std::max<GLsizei>(count, GLsizei(part.firstIndex + part.indexCount));
-    gl_.glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-  }
-  gl_.glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  gl_.glDepthFunc(GL_LEQUAL);
-  gl_.glUseProgram(sceneProgram_);
-  setMatrix(gl_, u.uViewProjection, viewProjection);
-  const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
-  const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
-  gl_.glUniform3f(u.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
-  gl_.glUniform3f(u.uCameraForward, float(forward.x()), float(forward.y()), float(forward.z()));
-  gl_.glUniform1f(u.uMetersPerUnit, float(list.metersPerUnit));
-  gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
-  gl_.glUniform3f(u.uAmbient, ambient.x(), ambient.y(), ambient.z());
-  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(2 * settings_.shadowMapSize));
-
   // Lights (the dome is the ambient term above).
-  int types[shaders::kMaxLights] = {};
   float radiance[3 * shaders::kMaxLights] = {}, position[3 * shaders::kMaxLights] = {},
         direction[3 * shaders::kMaxLights] = {}, params[4 * shaders::kMaxLights] = {};
-  int shadowOf[shaders::kMaxLights];
-  std::fill_n(shadowOf, shaders::kMaxLights, -1);
   int count = 0;
+  lightCalls_.assign("#define ADD_LIGHTS");
   for (size_t i = 0; i < list.lights.size() && count < shaders::kMaxLights; ++i) {
     const RenderLight& l = list.lights[i];
     if (l.kind == LightKind::Dome) continue;
+    int shadowSlot = -1;
     for (size_t k = 0; k < shadowSlots_.size(); ++k)
-      if (shadowSlots_[k].light == i) shadowOf[count] = int(k);
-    types[count] = lightTypeCode(l.kind);
+      if (shadowSlots_[k].light == i) shadowSlot = int(k);
+    appendLightCall(lightCalls_, count, lightTypeCode(l.kind), shadowSlot);
     for (int c = 0; c < 3; ++c) {
       radiance[3 * count + c] = l.radiance[c];
       position[3 * count + c] = float(l.position[c]);
@@ -406,13 +410,31 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
     params[4 * count + 3] = l.length;
     ++count;
   }
-  gl_.glUniform1i(u.uLightCount, count);
-  gl_.glUniform1iv(u.uLightType, shaders::kMaxLights, types);
+  const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
+  // Depth first, colour writes off: the expensive lighting below then runs
+  // once per visible pixel instead of once per covering triangle.
+  gl_.glUseProgram(depthProgram_);
+  setMatrix(gl_, depthViewProjection_, viewProjection);
+  gl_.glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  drawWholeMeshes(batches_, instanceBuffer_);
+  gl_.glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  gl_.glDepthFunc(GL_LEQUAL);
+  lightCalls_.push_back('\n');
+  const Uniforms& u = sceneProgram(lightCalls_);
+  setMatrix(gl_, u.uViewProjection, viewProjection);
+  const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
+  const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
+  gl_.glUniform3f(u.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
+  gl_.glUniform3f(u.uCameraForward, float(forward.x()), float(forward.y()), float(forward.z()));
+  gl_.glUniform1f(u.uMetersPerUnit, float(list.metersPerUnit));
+  gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
+  gl_.glUniform3f(u.uAmbient, ambient.x(), ambient.y(), ambient.z());
+  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(2 * shadowMapSize()));
+
   gl_.glUniform3fv(u.uLightRadiance, shaders::kMaxLights, radiance);
   gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, position);
   gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, direction);
   gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, params);
-  gl_.glUniform1iv(u.uLightShadow, shaders::kMaxLights, shadowOf);
   // Texture units: 0 surface, 1 dome, 2 the shadow atlas.
   gl_.glActiveTexture(GL_TEXTURE2);
   gl_.glBindTexture(GL_TEXTURE_2D, shadowAtlas_);
@@ -439,29 +461,24 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glUniform1i(u.uTexture, 0);
   gl_.glActiveTexture(GL_TEXTURE0);
 
-  for (const RenderItem& item : list.items) {
-    const GpuMesh& m = mesh(item);
-    setMatrix(gl_, u.uWorldFromLocal, item.worldFromLocal);
-    Matrix4d normalMatrix = Matrix4d::Identity();
-    normalMatrix.block<3, 3>(0, 0) = item.worldFromLocal.block<3, 3>(0, 0).inverse().transpose();
-    setMatrix(gl_, u.uNormalMatrix, normalMatrix);
-    gl_.glUniform1ui(u.uInstanceId, item.instanceId);
-    gl_.glBindVertexArray(m.vao);
+  for (const InstanceBatch& batch : batches_.byMaterial()) {
+    const GpuMesh& m = bindBatch(batch, instanceBuffer_);
+    const RenderItem& item = list.items[batch.item];  // the batch shares its material source
     for (const MeshPart& part : m.parts) {
-      // The prim's bound material wins; else the file's; else displayColor.
+      // The prim's bound material wins; else the file's; else displayColor
+      // (the last two and the texture transform travel per instance).
       const bool useFile = !item.material.fromPrim && part.hasMaterial;
-      const Vec3f base = useFile ? part.baseColor : item.material.baseColor;
       const std::string& tex = useFile ? part.texture : item.material.texture;
-      gl_.glUniform3f(u.uBaseColor, base.x(), base.y(), base.z());
-      gl_.glUniform1f(u.uRoughness, useFile ? part.roughness : item.material.roughness);
-      gl_.glUniform1f(u.uMetallic, useFile ? part.metallic : item.material.metallic);
+      gl_.glUniform1i(u.uUsePartMaterial, useFile ? 1 : 0);
+      if (useFile) {
+        gl_.glUniform3f(u.uPartBaseColor, part.baseColor.x(), part.baseColor.y(), part.baseColor.z());
+        gl_.glUniform2f(u.uPartSurface, part.roughness, part.metallic);
+      }
       gl_.glUniform1i(u.uHasTexture, tex.empty() ? 0 : 1);
       gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath).id);
-      gl_.glUniform2f(u.uTextureScale, item.material.textureScale.x(), item.material.textureScale.y());
-      gl_.glUniform1f(u.uTextureRotate, item.material.textureRotate);
-      gl_.glUniform1i(u.uProjectUvw, item.material.projectUvw ? 1 : 0);
-      gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                         reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
+      gl_.glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
+                                  reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)),
+                                  GLsizei(batch.count));
     }
   }
   if (texturedDome) {
@@ -573,12 +590,15 @@ void Renderer::ensureTargets() {
 void Renderer::drawFrame(const RenderList& list, size_t cameraIndex) {
   if (cameraIndex >= list.cameras.size()) throw RunError("renderer: no camera to render");
   ensureTargets();
+  resolveMeshes(list);
+  batches_.build(list, meshSlots_);
+  uploadInstances(batches_, instanceBuffer_);
   // Distant and sphere lights cast shadows, in stage order, up to the limit.
   shadowSlots_.clear();
   for (size_t i = 0; i < list.lights.size() && int(shadowSlots_.size()) < std::min(settings_.maxShadowedLights, 4); ++i)
     if (list.lights[i].kind == LightKind::Distant || list.lights[i].kind == LightKind::Sphere)
       shadowSlots_.push_back({i, Matrix4d::Identity()});
-  if (!shadowSlots_.empty()) drawShadowMaps(list);
+  if (!shadowSlots_.empty()) drawShadowMaps(list, list.cameras[cameraIndex]);
   drawScene(list, list.cameras[cameraIndex], {0, 0});
 }
 
@@ -682,8 +702,7 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
   gl_.glEnable(GL_COLOR_LOGIC_OP);
   gl_.glLogicOp(GL_OR);
   gl_.glUseProgram(maskProgram_);
-  const int worldFromLocal = gl_.glGetUniformLocation(maskProgram_, "uWorldFromLocal");
-  const int bit = gl_.glGetUniformLocation(maskProgram_, "uBit");
+  resolveMeshes(list);
   setMatrix(gl_, gl_.glGetUniformLocation(maskProgram_, "uLightViewProjection"), viewProjection);
   maskPixels_.resize(size_t(w) * size_t(h));
   gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -696,18 +715,9 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
   for (size_t first = 0; first < groups.size(); first += 32) {
     const size_t last = std::min(groups.size(), first + 32);
     gl_.glClearBufferuiv(GL_COLOR, 0, zero);
-    for (size_t g = first; g < last; ++g) {
-      gl_.glUniform1ui(bit, 1u << (g - first));
-      for (size_t index : groups[g]) {
-        const RenderItem& item = list.items[index];
-        const GpuMesh& m = mesh(item);
-        setMatrix(gl_, worldFromLocal, item.worldFromLocal);
-        gl_.glBindVertexArray(m.vao);
-        for (const MeshPart& part : m.parts)
-          gl_.glDrawElements(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)));
-      }
-    }
+    maskBatches_.buildMasks(list, meshSlots_, groups, first, last);
+    uploadInstances(maskBatches_, maskInstanceBuffer_);
+    drawWholeMeshes(maskBatches_, maskInstanceBuffer_);
     gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, maskPixels_.data());
     for (int glY = 0; glY < h; ++glY) {
       const uint32_t* row = maskPixels_.data() + size_t(glY) * size_t(w);

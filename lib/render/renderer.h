@@ -2,6 +2,7 @@
 // Draws a RenderList through a GlContext into framebuffer objects and reads
 // back every pass. Meshes and textures are uploaded once and reused across
 // frames; shader programs and FBOs live as long as the renderer.
+#include <map>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -10,6 +11,7 @@
 #include "assets/mesh_data.h"
 #include "render/frame_passes.h"
 #include "render/gl_context.h"
+#include "render/instance_batches.h"
 #include "render/render_list.h"
 
 namespace sdg {
@@ -23,7 +25,10 @@ struct RenderSettings {
   // intensity 4000 maps to about 0.92 (sRGB 246); lamps of 20,000-120,000
   // at a few metres give moderate to bright pools of light.
   float exposureScale = 0.002f;
-  int shadowMapSize = 1024;  // per light; all share one atlas drawn in one pass
+  // Texels along each side of a light's map (all share one atlas drawn in
+  // one pass); 0 picks the output's larger side, which with maps fitted to
+  // what the camera sees resolves about one texel per pixel.
+  int shadowMapSize = 0;
   // Lights with shadow maps: every distant light and sphere light, up to this
   // many, in stage order; others light without shadows.
   int maxShadowedLights = 4;
@@ -74,9 +79,22 @@ class Renderer {
     int levels = 1;
   };
   const GpuMesh& mesh(const RenderItem& item);
+  // meshSlots_[i] = the slot of list.items[i]'s mesh (loading it if needed).
+  void resolveMeshes(const RenderList& list);
+  // Uploads `batches`' records into `buffer` for this frame's draws.
+  void uploadInstances(const InstanceBatches& batches, unsigned buffer);
+  // Binds the batch's mesh with its instance attributes at the batch's
+  // records in `buffer`.
+  const GpuMesh& bindBatch(const InstanceBatch& batch, unsigned buffer);
+  // Every index of a mesh's parts in one instanced draw (positions only).
+  void drawWholeMeshes(const InstanceBatches& batches, unsigned buffer);
   const GpuTexture& texture(const std::string& path, const std::string& primPath);
   Eigen::AlignedBox3d sceneBounds(const RenderList& list);
-  void drawShadowMaps(const RenderList& list);
+  void drawShadowMaps(const RenderList& list, const RenderCamera& camera);
+  int shadowMapSize() const;
+  // Makes the program for this arrangement of lights current (compiling it
+  // the first time) and returns its uniform locations.
+  const Uniforms& sceneProgram(const std::string& lightCalls);
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
   void ensureTargets();
@@ -96,13 +114,26 @@ class Renderer {
   const GlApi& gl_;
   const AssetResolver& assets_;
   RenderSettings settings_;
-  unsigned sceneProgram_ = 0, shadowProgram_ = 0, skyProgram_ = 0, maskProgram_ = 0, emptyVao_ = 0;
+  unsigned shadowProgram_ = 0, skyProgram_ = 0, maskProgram_ = 0, emptyVao_ = 0;
   unsigned depthProgram_ = 0;
-  int depthWorldFromLocal_ = -1, depthViewProjection_ = -1;
+  int depthViewProjection_ = -1;
+  // This frame's items grouped for instanced draws, and the coverage pass's.
+  InstanceBatches batches_, maskBatches_;
+  unsigned instanceBuffer_ = 0, maskInstanceBuffer_ = 0;
+  std::vector<uint32_t> meshSlots_;
+  std::vector<const GpuMesh*> meshBySlot_;
   unsigned maskFramebuffer_ = 0, maskTexture_ = 0, maskDepth_ = 0;
   int maskWidth_ = 0, maskHeight_ = 0;
   std::vector<uint32_t> maskPixels_;
-  std::unique_ptr<Uniforms> uniforms_;
+  // The scene program, compiled once per arrangement of lights (their types
+  // and shadow slots become literals in the shader), and its uniforms.
+  struct SceneProgram {
+    unsigned program = 0;
+    std::unique_ptr<Uniforms> uniforms;
+  };
+  std::map<std::string, SceneProgram> scenePrograms_;
+  std::string lightCalls_;  // this frame's arrangement, the programs' key
+  int shadowLightViewProjection_ = -1;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
   unsigned whiteTexture_ = 0;

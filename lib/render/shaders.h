@@ -33,22 +33,36 @@ vec4 displayColor(vec3 radiance, float exposureScale) {
 }
 )";
 
+// Per-instance attributes (divisor 1) follow the mesh's own three; their
+// layout is InstanceRecord's (render/instance_batches.h).
 inline constexpr const char* kSceneVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
-uniform mat4 uWorldFromLocal;
-uniform mat4 uNormalMatrix;
+layout(location = 3) in mat4 aWorldFromLocal;
+layout(location = 7) in mat3 aNormalMatrix;
+layout(location = 10) in vec3 aBaseColor;
+layout(location = 11) in vec4 aSurface;
+layout(location = 12) in vec4 aTextureTransform;
+layout(location = 13) in uint aInstanceId;
 uniform mat4 uViewProjection;
 out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 out vec2 vUv;
+flat out vec3 vBaseColor;
+flat out vec4 vSurface;
+flat out vec4 vTextureTransform;
+flat out uint vInstanceId;
 invariant gl_Position;  // bit-identical to the depth pre-pass
 void main() {
-  vec4 world = uWorldFromLocal * vec4(aPosition, 1.0);
+  vec4 world = aWorldFromLocal * vec4(aPosition, 1.0);
   vWorldPosition = world.xyz;
-  vWorldNormal = mat3(uNormalMatrix) * aNormal;
+  vWorldNormal = aNormalMatrix * aNormal;
   vUv = aUv;
+  vBaseColor = aBaseColor;
+  vSurface = aSurface;
+  vTextureTransform = aTextureTransform;
+  vInstanceId = aInstanceId;
   gl_Position = uViewProjection * world;
 }
 )";
@@ -62,24 +76,22 @@ in vec2 vUv;
 uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
 uniform float uMetersPerUnit;
-uniform uint uInstanceId;
-uniform vec3 uBaseColor;
-uniform float uRoughness;
-uniform float uMetallic;
+flat in vec3 vBaseColor;
+flat in vec4 vSurface;  // roughness, metallic, projectUvw
+flat in vec4 vTextureTransform;  // scale, cos and sin of the rotation
+flat in uint vInstanceId;
+// A mesh file's own material for this part, shared by every instance.
+uniform int uUsePartMaterial;
+uniform vec3 uPartBaseColor;
+uniform vec2 uPartSurface;  // roughness, metallic
 uniform int uHasTexture;
 uniform sampler2D uTexture;
-uniform vec2 uTextureScale;
-uniform float uTextureRotate;
-uniform int uProjectUvw;
 uniform float uExposureScale;
 uniform vec3 uAmbient;
-uniform int uLightCount;
-uniform int uLightType[MAX_LIGHTS];
 uniform vec3 uLightRadiance[MAX_LIGHTS];
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightDirection[MAX_LIGHTS];
 uniform vec4 uLightParams[MAX_LIGHTS];
-uniform int uLightShadow[MAX_LIGHTS];  // shadow slot of each light, -1 for none
 uniform mat4 uShadowMatrix[4];
 uniform sampler2DShadow uShadowAtlas;  // 2 x 2 tiles, one per shadow slot
 uniform float uShadowTexel;
@@ -91,14 +103,14 @@ uniform vec3 uDomeScale;
 
 
 vec2 transformUv(vec2 uv) {
-  float c = cos(radians(uTextureRotate)), s = sin(radians(uTextureRotate));
-  uv *= uTextureScale;
+  float c = vTextureTransform.z, s = vTextureTransform.w;
+  uv *= vTextureTransform.xy;
   return vec2(c * uv.x - s * uv.y, s * uv.x + c * uv.y);
 }
 
-vec3 albedo(vec3 n) {
-  if (uHasTexture == 0) return uBaseColor;
-  if (uProjectUvw == 0) return texture(uTexture, transformUv(vUv)).rgb;
+vec3 albedo(vec3 n, vec3 baseColor) {
+  if (uHasTexture == 0) return baseColor;
+  if (vSurface.z == 0.0) return texture(uTexture, transformUv(vUv)).rgb;
   // World-space triplanar projection, blended by the normal.
   vec3 w = abs(n);
   w /= (w.x + w.y + w.z);
@@ -108,77 +120,85 @@ vec3 albedo(vec3 n) {
   return x * w.x + y * w.y + z * w.z;
 }
 
-// Fraction of the light that reaches this point: 2 x 2 taps of bilinear
-// PCF (each tap already compares and blends 4 texels), so 4 x 4 texels.
+// Fraction of the light that reaches this point: one bilinear PCF tap (the
+// hardware compares and blends 2 x 2 texels). The maps are fitted to what
+// the camera sees, about one texel per pixel, so this anti-aliases the edge
+// over about a pixel; wider kernels cost llvmpipe 4-5 ms a frame per light.
 float shadow(int slot) {
   vec4 q = uShadowMatrix[slot] * vec4(vWorldPosition, 1.0);
   if (q.w <= 0.0) return 1.0;
   vec3 p = q.xyz / q.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
-  // Into the slot's tile of the atlas, keeping the PCF taps inside it.
+  // Into the slot's tile of the atlas, keeping the filter inside it.
   vec2 tile = vec2(slot % 2, slot / 2);
-  vec2 inTile = clamp(p.xy, 2.0 * uShadowTexel, 1.0 - 2.0 * uShadowTexel);
-  float lit = 0.0;
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j)
-      lit += texture(uShadowAtlas, vec3((tile + inTile + (vec2(i, j) - 0.5) * 2.0 * uShadowTexel) * 0.5, p.z));
-  return lit / 4.0;
+  vec2 inTile = clamp(p.xy, uShadowTexel, 1.0 - uShadowTexel);
+  return texture(uShadowAtlas, vec3((tile + inTile) * 0.5, p.z));
 }
 
 // Lambert diffuse + GGX specular (Smith-Schlick visibility, Schlick Fresnel).
-vec3 brdf(vec3 n, vec3 v, vec3 l, vec3 base) {
+vec3 brdf(vec3 n, vec3 v, vec3 l, vec3 base, float roughness, float metallic) {
   vec3 h = normalize(l + v);
   float nl = max(dot(n, l), 0.0), nv = max(dot(n, v), 1e-4), nh = max(dot(n, h), 0.0), vh = max(dot(v, h), 0.0);
-  float a = max(uRoughness * uRoughness, 1e-3);
+  float a = max(roughness * roughness, 1e-3);
   float a2 = a * a;
-  float d = a2 / (PI * pow(nh * nh * (a2 - 1.0) + 1.0, 2.0));
+  float denominator = nh * nh * (a2 - 1.0) + 1.0;
+  float d = a2 / (PI * denominator * denominator);
   float k = a / 2.0;
   float g = (nl / (nl * (1.0 - k) + k)) * (nv / (nv * (1.0 - k) + k));
-  vec3 f0 = mix(vec3(0.04), base, uMetallic);
-  vec3 f = f0 + (1.0 - f0) * pow(1.0 - vh, 5.0);
+  vec3 f0 = mix(vec3(0.04), base, metallic);
+  float m = 1.0 - vh, m2 = m * m;
+  vec3 f = f0 + (1.0 - f0) * (m2 * m2 * m);
   vec3 specular = d * g * f / max(4.0 * nl * nv, 1e-4);
-  return base * (1.0 - uMetallic) / PI + specular;
+  return base * (1.0 - metallic) / PI + specular;
+}
+
+// Light `i` of type `type` (0 distant, 1 sphere, 2 rect, 3 disk, 4 cylinder),
+// its shadow map in atlas slot `slot` (-1: none).
+vec3 lightContribution(int i, int type, int slot, vec3 n, vec3 v, vec3 base, float roughness, float metallic) {
+  vec3 l;
+  vec3 irradiance;
+  if (type == 0) {  // distant: radiance is irradiance at normal incidence
+    l = -uLightDirection[i];
+    irradiance = uLightRadiance[i];
+  } else {
+    vec3 toLight = uLightPosition[i] - vWorldPosition;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    l = toLight * inversesqrt(d2);
+    vec4 p = uLightParams[i];
+    float area;
+    float facing = 1.0;
+    if (type == 1) area = PI * p.x * p.x;                                           // sphere (projected disk)
+    else if (type == 2) { area = p.y * p.z; facing = max(dot(uLightDirection[i], -l), 0.0); }  // rect
+    else if (type == 3) { area = PI * p.x * p.x; facing = max(dot(uLightDirection[i], -l), 0.0); }  // disk
+    else area = 2.0 * p.x * p.w;                                                     // cylinder (projected)
+    irradiance = uLightRadiance[i] * area * facing / d2;
+  }
+  if (slot >= 0) irradiance *= shadow(slot);
+  float nl = max(dot(n, l), 0.0);
+  return brdf(n, v, l, base, roughness, metallic) * irradiance * nl;
 }
 
 void main() {
   vec3 n = normalize(vWorldNormal);
   vec3 v = normalize(uCameraPosition - vWorldPosition);
   if (dot(n, v) < 0.0) n = -n;  // back faces of double-sided geometry
-  vec3 base = albedo(n);
+  bool part = uUsePartMaterial != 0;
+  float roughness = part ? uPartSurface.x : vSurface.x;
+  float metallic = part ? uPartSurface.y : vSurface.y;
+  vec3 base = albedo(n, part ? uPartBaseColor : vBaseColor);
   // Ambient from the dome: a blurred (high mip) lat-long lookup along the
   // normal approximates its irradiance; a dome without a texture is uniform.
   vec3 ambient = uAmbient;
   if (uHasDome != 0) ambient = uDomeScale * textureLod(uDome, latLong(uDomeFromWorld * n), uDomeLod).rgb;
-  vec3 radiance = base * (1.0 - uMetallic) * ambient;
-  for (int i = 0; i < uLightCount; ++i) {
-    vec3 l;
-    vec3 irradiance;
-    int type = uLightType[i];
-    if (type == 0) {  // distant: radiance is irradiance at normal incidence
-      l = -uLightDirection[i];
-      irradiance = uLightRadiance[i];
-    } else {
-      vec3 toLight = uLightPosition[i] - vWorldPosition;
-      float d2 = max(dot(toLight, toLight), 1e-8);
-      l = toLight * inversesqrt(d2);
-      vec4 p = uLightParams[i];
-      float area;
-      float facing = 1.0;
-      if (type == 1) area = PI * p.x * p.x;                                           // sphere (projected disk)
-      else if (type == 2) { area = p.y * p.z; facing = max(dot(uLightDirection[i], -l), 0.0); }  // rect
-      else if (type == 3) { area = PI * p.x * p.x; facing = max(dot(uLightDirection[i], -l), 0.0); }  // disk
-      else area = 2.0 * p.x * p.w;                                                     // cylinder (projected)
-      irradiance = uLightRadiance[i] * area * facing / d2;
-    }
-    if (uLightShadow[i] >= 0) irradiance *= shadow(uLightShadow[i]);
-    float nl = max(dot(n, l), 0.0);
-    radiance += brdf(n, v, l, base) * irradiance * nl;
-  }
+  vec3 radiance = base * (1.0 - metallic) * ambient;
+  // One call per light, written out by the renderer with the light's type
+  // and shadow slot as literals: the compiler folds every branch away.
+  ADD_LIGHTS
   oColor = displayColor(radiance, uExposureScale);
   float distance = length(vWorldPosition - uCameraPosition);
   oNormalDistance = vec4(n, distance * uMetersPerUnit);
   oPlaneDistance = dot(vWorldPosition - uCameraPosition, uCameraForward) * uMetersPerUnit;
-  oInstanceId = uInstanceId;
+  oInstanceId = vInstanceId;
 }
 )";
 
@@ -216,20 +236,27 @@ void main() {
 // shading pass can test GL_LEQUAL and shade each pixel once.
 inline constexpr const char* kDepthVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
-uniform mat4 uWorldFromLocal;
+layout(location = 3) in mat4 aWorldFromLocal;
 uniform mat4 uViewProjection;
 invariant gl_Position;
 void main() {
-  vec4 world = uWorldFromLocal * vec4(aPosition, 1.0);
+  vec4 world = aWorldFromLocal * vec4(aPosition, 1.0);
   gl_Position = uViewProjection * world;
 }
 )";
 
+// Shadow maps and coverage masks: positions only, seen from a light or the
+// camera; the coverage pass also passes each instance's bit on.
 inline constexpr const char* kShadowVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
-uniform mat4 uWorldFromLocal;
+layout(location = 3) in mat4 aWorldFromLocal;
+layout(location = 13) in uint aBit;
 uniform mat4 uLightViewProjection;
-void main() { gl_Position = uLightViewProjection * uWorldFromLocal * vec4(aPosition, 1.0); }
+flat out uint vBit;
+void main() {
+  vBit = aBit;
+  gl_Position = uLightViewProjection * aWorldFromLocal * vec4(aPosition, 1.0);
+}
 )";
 
 inline constexpr const char* kShadowFragment = R"(#version 330 core
@@ -240,8 +267,8 @@ void main() {}
 // occlusion): each ORs its own bit into the mask.
 inline constexpr const char* kMaskFragment = R"(#version 330 core
 layout(location = 0) out uint oMask;
-uniform uint uBit;
-void main() { oMask = uBit; }
+flat in uint vBit;
+void main() { oMask = vBit; }
 )";
 
 }  // namespace sdg::shaders
