@@ -12,6 +12,7 @@
 #include "core/diagnostics.h"
 #include "core/file_io.h"
 #include "core/log.h"
+#include "core/recycler.h"
 #include "render/renderer.h"
 #include "run/dataset_finalize.h"
 #include "run/preroll.h"
@@ -48,17 +49,16 @@ struct PendingProduct {
   int slot = 0;
 };
 
-// A frame's thumbnail with the tight box and class of every visible entity.
+// A frame's thumbnail with the tight box (visible pixels) and class of
+// every visible entity.
 std::vector<uint8_t> sheetTile(uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
-                               const std::vector<Renderer::Coverage>& coverage) {
+                               const std::vector<Box2D>& tight) {
   std::vector<SheetBox> boxes;
-  for (size_t e = 0; e < semantics.entities.size() && e < coverage.size(); ++e) {
-    const Renderer::Coverage& c = coverage[e];
-    if (c.pixels == 0) continue;
-    const LabelSet& labels = semantics.entities[e].labels;
+  for (const Box2D& b : tight) {
+    const LabelSet& labels = semantics.entities[b.entity].labels;
     auto cls = labels.find("class");
     std::string label = cls != labels.end() ? cls->second : labels.empty() ? "" : labels.begin()->second;
-    boxes.push_back({c.xMin, c.yMin, c.xMax, c.yMax, semantics.entities[e].semanticId, label});
+    boxes.push_back({b.xMin, b.yMin, b.xMax, b.yMax, b.semanticId, label});
   }
   return contactSheetTile(frame, passes.rgba, passes.width, passes.height, boxes);
 }
@@ -182,6 +182,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   Progress progress(owned - result.resumedFrames, options.progress);
   std::unique_ptr<ChangeRecorder> recorder;
   const Stage original = scene.stage;
+  // At most the pool's queue plus its workers plus two read-back slots of
+  // frames are alive at once; their buffers circulate.
+  Recycler<FramePasses> spareFrames;
   // Hands a collected product to the pool: annotators, COCO fragment,
   // thumbnail, encoding, durable writes, then its manifest line.
   auto submit = [&](const PendingProduct& p) {
@@ -192,12 +195,13 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     const bool toSheet = p.toSheet;
     const std::string outDir = options.outDir;
     pool.submit([job, shared, coverage, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
-                 outDir, &files, &encodeMicros, &annotateMicros, seq = sequence++] {
+                 outDir, &files, &encodeMicros, &annotateMicros, &spareFrames, seq = sequence++] {
       auto jobStart = Clock::now();
       const FrameSemantics& semantics = shared->semantics;
       std::vector<EntityCoverage> entityCoverage;
       for (const auto& c : *coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-      if (annotations)
+      // Sheet frames need the tight boxes even when the writer does not.
+      if (annotations || toSheet)
         annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
                  job->annotations);
       for (const SemanticEntity& e : semantics.entities) {
@@ -216,7 +220,8 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         parts.push_back({cocoFragmentPath(job->frame, job->product), std::vector<uint8_t>(text.begin(), text.end())});
       }
       if (toSheet)
-        parts.push_back({contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, *coverage)});
+        parts.push_back(
+            {contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, job->annotations.tight)});
       auto encodeStart = Clock::now();
       annotateMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(encodeStart - jobStart).count());
       std::vector<OutputFile> encoded = writer.encode(*job);
@@ -227,6 +232,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
       manifest.commit(seq, std::move(entry));
       files += datasetFiles;
+      spareFrames.give(std::move(job->passes));
       encodeMicros +=
           uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - encodeStart).count());
     });
@@ -297,15 +303,19 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         job->product = product;
         job->camera = list.cameras[cameraIndex];
         job->metersPerUnit = list.metersPerUnit;
+        job->passes = spareFrames.take();
         auto renderStart = Clock::now();
         // Draw this product and start its read-back; while the GPU works,
         // collect the previous product (its read-back is done by now) and
         // hand it to the pool.
         const int slot = int(queued++ & 1);
-        renderer.queue(list, cameraIndex, passes, slot);
-        auto coverage = std::make_shared<std::vector<Renderer::Coverage>>();
+        // Sheet frames also read the ids back: their boxes come from them.
         const bool toSheet = product == 0 && sheetFrames.count(frame);
-        if (writer.needsCoverage() || cocoConfig || toSheet) renderer.renderCoverage(list, cameraIndex, groups, *coverage);
+        PassSelection productPasses = passes;
+        productPasses.ids = passes.ids || toSheet;
+        renderer.queue(list, cameraIndex, productPasses, slot);
+        auto coverage = std::make_shared<std::vector<Renderer::Coverage>>();
+        if (writer.needsCoverage() || cocoConfig) renderer.renderCoverage(list, cameraIndex, groups, *coverage);
         collectPending();
         pending = PendingProduct{job, shared, coverage, cameraIndex, toSheet, slot};
         result.stages.render += since(renderStart);
