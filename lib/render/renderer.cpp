@@ -146,6 +146,7 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment, false);
   depthProgram_ = link(gl_, shaders::kDepthVertex, shaders::kShadowFragment, false);
   depthViewProjection_ = gl_.glGetUniformLocation(depthProgram_, "uViewProjection");
+  maskViewProjection_ = gl_.glGetUniformLocation(maskProgram_, "uLightViewProjection");
   gl_.glGenFramebuffers(1, &maskFramebuffer_);
   gl_.glGenVertexArrays(1, &emptyVao_);
   gl_.glGenBuffers(1, &instanceBuffer_);
@@ -159,7 +160,10 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
 }
 
 Renderer::~Renderer() {
-  for (ReadSlot& r : readSlots_) gl_.glDeleteBuffers(4, r.buffers);
+  for (ReadSlot& r : readSlots_) {
+    gl_.glDeleteBuffers(4, r.buffers);
+    if (r.maskBuffer) gl_.glDeleteBuffers(1, &r.maskBuffer);
+  }
   gl_.glDeleteBuffers(1, &instanceBuffer_);
   gl_.glDeleteBuffers(1, &maskInstanceBuffer_);
   for (auto& [key, m] : meshes_) {
@@ -674,10 +678,12 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
 
 namespace sdg {
 
-void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
-                              std::vector<Coverage>& out) {
+void Renderer::queueCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
+                             int slot) {
+  ReadSlot& r = readSlots_[slot & 1];
   const int w = settings_.width, h = settings_.height;
-  out.assign(groups.size(), Coverage{});
+  r.maskGroups = groups.size();
+  r.masksPending = true;
   if (groups.empty()) return;
   if (maskWidth_ != w || maskHeight_ != h) {
     unsigned old[] = {maskTexture_, maskDepth_};
@@ -692,6 +698,14 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
     maskWidth_ = w;
     maskHeight_ = h;
   }
+  const size_t layers = (groups.size() + 31) / 32;
+  const size_t layerBytes = size_t(w) * size_t(h) * sizeof(uint32_t);
+  if (!r.maskBuffer) gl_.glGenBuffers(1, &r.maskBuffer);
+  gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, r.maskBuffer);
+  if (r.maskBufferBytes < layers * layerBytes) {
+    r.maskBufferBytes = layers * layerBytes;
+    gl_.glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(r.maskBufferBytes), nullptr, GL_STREAM_READ);
+  }
   const RenderCamera& camera = list.cameras[cameraIndex];
   const Matrix4d viewProjection = projectionMatrix(camera, w, h) * viewMatrix(camera);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer_);
@@ -703,28 +717,59 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
   gl_.glLogicOp(GL_OR);
   gl_.glUseProgram(maskProgram_);
   resolveMeshes(list);
-  setMatrix(gl_, gl_.glGetUniformLocation(maskProgram_, "uLightViewProjection"), viewProjection);
-  maskPixels_.resize(size_t(w) * size_t(h));
+  setMatrix(gl_, maskViewProjection_, viewProjection);
   gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
   gl_.glReadBuffer(GL_COLOR_ATTACHMENT0);
   const unsigned zero[4] = {0, 0, 0, 0};
-  for (auto& c : out) {
-    c.xMin = w;
-    c.yMin = h;
-  }
-  for (size_t first = 0; first < groups.size(); first += 32) {
-    const size_t last = std::min(groups.size(), first + 32);
+  for (size_t layer = 0; layer < layers; ++layer) {
+    const size_t first = layer * 32, last = std::min(groups.size(), first + 32);
     gl_.glClearBufferuiv(GL_COLOR, 0, zero);
     maskBatches_.buildMasks(list, meshSlots_, groups, first, last);
     uploadInstances(maskBatches_, maskInstanceBuffer_);
     drawWholeMeshes(maskBatches_, maskInstanceBuffer_);
-    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, maskPixels_.data());
+    gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, r.maskBuffer);
+    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, reinterpret_cast<void*>(layer * layerBytes));
+  }
+  gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  gl_.glDisable(GL_COLOR_LOGIC_OP);
+  gl_.glEnable(GL_DEPTH_TEST);
+  gl_.glBindVertexArray(0);
+}
+
+void Renderer::collectCoverage(int slot, CoverageMasks& out) {
+  ReadSlot& r = readSlots_[slot & 1];
+  if (!r.masksPending) throw RunError("renderer: no coverage was queued in read-back slot " + std::to_string(slot));
+  r.masksPending = false;
+  out.width = settings_.width;
+  out.height = settings_.height;
+  out.groups = r.maskGroups;
+  const size_t words = (r.maskGroups + 31) / 32 * size_t(out.width) * size_t(out.height);
+  out.bits.resize(words);
+  if (!words) return;
+  gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, r.maskBuffer);
+  const void* pixels = gl_.glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(words * sizeof(uint32_t)), GL_MAP_READ_BIT);
+  if (!pixels) throw RunError("renderer: cannot map the coverage read-back buffer");
+  std::copy_n(static_cast<const uint32_t*>(pixels), words, out.bits.data());
+  gl_.glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+  gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+}
+
+void Renderer::coverageOf(const CoverageMasks& masks, std::vector<Coverage>& out) {
+  const int w = masks.width, h = masks.height;
+  out.assign(masks.groups, Coverage{});
+  for (auto& c : out) {
+    c.xMin = w;
+    c.yMin = h;
+  }
+  const size_t layerWords = size_t(w) * size_t(h);
+  for (size_t layer = 0; layer * 32 < masks.groups; ++layer) {
+    const uint32_t* pixels = masks.bits.data() + layer * layerWords;
     for (int glY = 0; glY < h; ++glY) {
-      const uint32_t* row = maskPixels_.data() + size_t(glY) * size_t(w);
+      const uint32_t* row = pixels + size_t(glY) * size_t(w);
       const int y = h - 1 - glY;  // rows top to bottom
       for (int x = 0; x < w; ++x) {
         for (uint32_t bits = row[x]; bits; bits &= bits - 1) {
-          Coverage& c = out[first + size_t(__builtin_ctz(bits))];
+          Coverage& c = out[layer * 32 + size_t(__builtin_ctz(bits))];
           ++c.pixels;
           c.xMin = std::min(c.xMin, x);
           c.xMax = std::max(c.xMax, x);
@@ -736,9 +781,6 @@ void Renderer::renderCoverage(const RenderList& list, size_t cameraIndex, const 
   }
   for (auto& c : out)
     if (!c.pixels) c = Coverage{};
-  gl_.glDisable(GL_COLOR_LOGIC_OP);
-  gl_.glEnable(GL_DEPTH_TEST);
-  gl_.glBindVertexArray(0);
 }
 
 }  // namespace sdg

@@ -62,8 +62,20 @@ class Renderer {
     uint64_t pixels = 0;
     int xMin = 0, yMin = 0, xMax = -1, yMax = -1;
   };
-  void renderCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
-                      std::vector<Coverage>& out);
+  // The masks as read back: one width x height layer of bits per 32
+  // groups (group g is bit g % 32 of layer g / 32), rows bottom first.
+  struct CoverageMasks {
+    int width = 0, height = 0;
+    size_t groups = 0;
+    std::vector<uint32_t> bits;
+  };
+  // Draws the masks and starts their read-back into `slot` (as queue());
+  // collectCoverage() waits for them. coverageOf() turns them into pixel
+  // counts and bounds: CPU work that a writer thread can take.
+  void queueCoverage(const RenderList& list, size_t cameraIndex, const std::vector<std::vector<size_t>>& groups,
+                     int slot);
+  void collectCoverage(int slot, CoverageMasks& out);
+  static void coverageOf(const CoverageMasks& masks, std::vector<Coverage>& out);
   // Local bounds of an item's mesh (loads it if needed).
   Eigen::AlignedBox3f meshBounds(const RenderItem& item);
 
@@ -107,6 +119,10 @@ class Renderer {
     bool pending = false;
     bool synchronous = false;  // subframes: the frame is already in `frame`
     FramePasses frame;
+    unsigned maskBuffer = 0;  // coverage layers, one after another
+    size_t maskBufferBytes = 0;
+    size_t maskGroups = 0;
+    bool masksPending = false;
   };
   ReadSlot readSlots_[2];
 
@@ -124,7 +140,6 @@ class Renderer {
   std::vector<const GpuMesh*> meshBySlot_;
   unsigned maskFramebuffer_ = 0, maskTexture_ = 0, maskDepth_ = 0;
   int maskWidth_ = 0, maskHeight_ = 0;
-  std::vector<uint32_t> maskPixels_;
   // The scene program, compiled once per arrangement of lights (their types
   // and shadow slots become literals in the shader), and its uniforms.
   struct SceneProgram {
@@ -133,7 +148,7 @@ class Renderer {
   };
   std::map<std::string, SceneProgram> scenePrograms_;
   std::string lightCalls_;  // this frame's arrangement, the programs' key
-  int shadowLightViewProjection_ = -1;
+  int shadowLightViewProjection_ = -1, maskViewProjection_ = -1;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
   unsigned whiteTexture_ = 0;

@@ -43,7 +43,7 @@ struct FrameShared {
 struct PendingProduct {
   std::shared_ptr<ProductFrame> job;
   std::shared_ptr<FrameShared> shared;
-  std::shared_ptr<std::vector<Renderer::Coverage>> coverage;
+  std::shared_ptr<Renderer::CoverageMasks> masks;  // null: the writer needs no coverage
   size_t cameraIndex = 0;
   bool toSheet = false;
   int slot = 0;
@@ -185,21 +185,27 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   // At most the pool's queue plus its workers plus two read-back slots of
   // frames are alive at once; their buffers circulate.
   Recycler<FramePasses> spareFrames;
+  Recycler<Renderer::CoverageMasks> spareMasks;
   // Hands a collected product to the pool: annotators, COCO fragment,
   // thumbnail, encoding, durable writes, then its manifest line.
   auto submit = [&](const PendingProduct& p) {
     auto job = p.job;
     auto shared = p.shared;
-    auto coverage = p.coverage;
+    auto masks = p.masks;
     const size_t cameraIndex = p.cameraIndex;
     const bool toSheet = p.toSheet;
     const std::string outDir = options.outDir;
-    pool.submit([job, shared, coverage, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
-                 outDir, &files, &encodeMicros, &annotateMicros, &spareFrames, seq = sequence++] {
+    pool.submit([job, shared, masks, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
+                 outDir, &files, &encodeMicros, &annotateMicros, &spareFrames, &spareMasks, seq = sequence++] {
       auto jobStart = Clock::now();
       const FrameSemantics& semantics = shared->semantics;
       std::vector<EntityCoverage> entityCoverage;
-      for (const auto& c : *coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+      if (masks) {
+        std::vector<Renderer::Coverage> coverage;
+        Renderer::coverageOf(*masks, coverage);
+        spareMasks.give(std::move(*masks));
+        for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
+      }
       // Sheet frames need the tight boxes even when the writer does not.
       if (annotations || toSheet)
         annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
@@ -242,6 +248,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   auto collectPending = [&] {
     if (!pending) return;
     renderer.collect(pending->slot, pending->job->passes);
+    if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
     submit(*pending);
     pending.reset();
   };
@@ -314,10 +321,13 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         PassSelection productPasses = passes;
         productPasses.ids = passes.ids || toSheet;
         renderer.queue(list, cameraIndex, productPasses, slot);
-        auto coverage = std::make_shared<std::vector<Renderer::Coverage>>();
-        if (writer.needsCoverage() || cocoConfig) renderer.renderCoverage(list, cameraIndex, groups, *coverage);
+        std::shared_ptr<Renderer::CoverageMasks> masks;
+        if (writer.needsCoverage() || cocoConfig) {
+          masks = std::make_shared<Renderer::CoverageMasks>(spareMasks.take());
+          renderer.queueCoverage(list, cameraIndex, groups, slot);
+        }
         collectPending();
-        pending = PendingProduct{job, shared, coverage, cameraIndex, toSheet, slot};
+        pending = PendingProduct{job, shared, masks, cameraIndex, toSheet, slot};
         result.stages.render += since(renderStart);
       }
       log::debug("frame " + std::to_string(frame) + " rendered");
