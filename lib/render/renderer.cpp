@@ -591,9 +591,16 @@ void Renderer::ensureTargets() {
 }
 
 // Shadow maps, then the un-jittered frame: labels come from it, exact.
-void Renderer::drawFrame(const RenderList& list, size_t cameraIndex) {
+void Renderer::drawFrame(const RenderList& list, size_t cameraIndex, const PassSelection& passes) {
   if (cameraIndex >= list.cameras.size()) throw RunError("renderer: no camera to render");
   ensureTargets();
+  // Attachments nobody reads are not written: each costs llvmpipe a store
+  // per pixel (16 bytes for normals).
+  gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_NONE, GL_NONE, GL_NONE};
+  for (int attachment = 1; attachment < 4; ++attachment)
+    if (wanted(attachment, passes)) buffers[attachment] = GLenum(GL_COLOR_ATTACHMENT0 + attachment);
+  gl_.glDrawBuffers(4, buffers);
   resolveMeshes(list);
   batches_.build(list, meshSlots_);
   uploadInstances(batches_, instanceBuffer_);
@@ -614,7 +621,7 @@ void Renderer::queue(const RenderList& list, size_t cameraIndex, const PassSelec
     r.pending = true;
     return;
   }
-  drawFrame(list, cameraIndex);
+  drawFrame(list, cameraIndex, passes);
   const int w = settings_.width, h = settings_.height;
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -660,7 +667,7 @@ void Renderer::collect(int slot, FramePasses& out) {
 void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes) {
   const int w = settings_.width, h = settings_.height;
   if (out.width != w || out.height != h) out.resize(w, h);
-  drawFrame(list, cameraIndex);
+  drawFrame(list, cameraIndex, passes);
   const RenderCamera& camera = list.cameras[cameraIndex];
   readBack(out, false, passes);
   if (settings_.subframes <= 1) return;

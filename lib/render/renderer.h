@@ -110,7 +110,7 @@ class Renderer {
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
   void ensureTargets();
-  void drawFrame(const RenderList& list, size_t cameraIndex);
+  void drawFrame(const RenderList& list, size_t cameraIndex, const PassSelection& passes);
   // One attachment's pixels (bottom row first, as GL gives them) into `out`.
   void unpack(int attachment, const void* pixels, FramePasses& out);
   struct ReadSlot {
