@@ -1,7 +1,8 @@
 #pragma once
 // Draws a RenderList through a GlContext into framebuffer objects and reads
-// back every pass. Meshes and textures are uploaded once and reused across
-// frames; shader programs and FBOs live as long as the renderer.
+// back the passes asked for. Meshes and textures are uploaded once and
+// reused across frames; shader programs and FBOs live as long as the
+// renderer.
 #include <map>
 #include <memory>
 #include <string>
