@@ -4,6 +4,8 @@
 // file given as the argument (its first camera). Prints one
 // JSON object per figure (median, min and max of 5 runs). llvmpipe's thread
 // count comes from LP_NUM_THREADS, so the script runs this once per setting.
+// SDG_BACKEND=egl picks the EGL back end, SDG_BENCH_FRAMES the frames per run
+// of a scene file, SDG_BENCH_ONLY=TEXT only the figures whose name has TEXT.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
+#include "core/diagnostics.h"
 #include "render/renderer.h"
 #include "run/scene_setup.h"
 #include "writers/png_encoder.h"
@@ -116,10 +119,7 @@ void measure(const std::string& name, const Stage& stage, Renderer& renderer, in
   std::fflush(stdout);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // SDG_BACKEND=egl measures the EGL back end (a GPU where there is one).
+int measureAll(int argc, char** argv) {
   const char* backend = std::getenv("SDG_BACKEND");
   auto context = createGlContext(backend ? backend : "osmesa", -1);
   std::fprintf(stderr, "bench_render: %s on %s (%s)\n", context->backend().c_str(), context->device().c_str(),
@@ -163,4 +163,18 @@ int main(int argc, char** argv) {
     measure("render 512x512 all passes: " + std::to_string(count) + " objects sharing a mesh", sharedMeshGrid(count),
             renderer, count >= 1000 ? 3 : 10);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return measureAll(argc, argv);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "bench_render: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_render: %s\n", e.what());
+    return 1;
+  }
 }

@@ -25,9 +25,10 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
 
-// Uniform locations, looked up once per program instead of per draw.
+// Uniform locations, looked up once per program instead of per draw (the
+// sky program uses a few of the same names; the rest stay -1 for it).
 struct Renderer::Uniforms {
 #define SDG_UNIFORM_FIELD(name) int name = -1;
   SDG_SCENE_UNIFORMS(SDG_UNIFORM_FIELD)
@@ -143,6 +144,7 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glGenFramebuffers(1, &framebuffer_);
   gl_.glGenFramebuffers(1, &shadowFramebuffer_);
   skyProgram_ = link(gl_, shaders::kSkyVertex, shaders::kSkyFragment);
+  skyUniforms_ = std::make_unique<Uniforms>(uniformsOf(skyProgram_));
   maskProgram_ = link(gl_, shaders::kShadowVertex, shaders::kMaskFragment, false);
   depthProgram_ = link(gl_, shaders::kDepthVertex, shaders::kShadowFragment, false);
   depthViewProjection_ = gl_.glGetUniformLocation(depthProgram_, "uViewProjection");
@@ -289,15 +291,20 @@ const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std
   return textures_.emplace(path, GpuTexture{t, levels}).first->second;
 }
 
+Renderer::Uniforms Renderer::uniformsOf(unsigned program) const {
+  Uniforms u;
+#define SDG_UNIFORM_LOOKUP(name) u.name = gl_.glGetUniformLocation(program, #name);
+  SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
+#undef SDG_UNIFORM_LOOKUP
+  return u;
+}
+
 const Renderer::Uniforms& Renderer::sceneProgram(const std::string& lightCalls) {
   auto it = scenePrograms_.find(lightCalls);
   if (it == scenePrograms_.end()) {
     SceneProgram p;
     p.program = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment, true, lightCalls.c_str());
-    p.uniforms = std::make_unique<Uniforms>();
-#define SDG_UNIFORM_LOOKUP(name) p.uniforms->name = gl_.glGetUniformLocation(p.program, #name);
-    SDG_SCENE_UNIFORMS(SDG_UNIFORM_LOOKUP)
-#undef SDG_UNIFORM_LOOKUP
+    p.uniforms = std::make_unique<Uniforms>(uniformsOf(p.program));
     it = scenePrograms_.emplace(lightCalls, std::move(p)).first;
   }
   gl_.glUseProgram(it->second.program);
@@ -489,14 +496,14 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
     // The sky fills what geometry left at the far plane.
     gl_.glDepthFunc(GL_LEQUAL);
     gl_.glUseProgram(skyProgram_);
-    auto sky = [&](const char* name) { return gl_.glGetUniformLocation(skyProgram_, name); };
-    setMatrix(gl_, sky("uWorldFromClip"), viewProjection.inverse());
-    gl_.glUniform3f(sky("uCameraPosition"), float(eye.x()), float(eye.y()), float(eye.z()));
+    const Uniforms& sky = *skyUniforms_;
+    setMatrix(gl_, sky.uWorldFromClip, viewProjection.inverse());
+    gl_.glUniform3f(sky.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
     Eigen::Matrix3f domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
-    gl_.glUniformMatrix3fv(sky("uDomeFromWorld"), 1, GL_FALSE, domeFromWorld.data());
-    gl_.glUniform3f(sky("uDomeScale"), texturedDome->radiance.x(), texturedDome->radiance.y(), texturedDome->radiance.z());
-    gl_.glUniform1f(sky("uExposureScale"), settings_.exposureScale);
-    gl_.glUniform1i(sky("uDome"), 1);
+    gl_.glUniformMatrix3fv(sky.uDomeFromWorld, 1, GL_FALSE, domeFromWorld.data());
+    gl_.glUniform3f(sky.uDomeScale, texturedDome->radiance.x(), texturedDome->radiance.y(), texturedDome->radiance.z());
+    gl_.glUniform1f(sky.uExposureScale, settings_.exposureScale);
+    gl_.glUniform1i(sky.uDome, 1);
     gl_.glBindVertexArray(emptyVao_);
     gl_.glDrawArrays(GL_TRIANGLES, 0, 3);
     gl_.glDepthFunc(GL_LESS);

@@ -108,6 +108,7 @@ class Renderer {
   // Makes the program for this arrangement of lights current (compiling it
   // the first time) and returns its uniform locations.
   const Uniforms& sceneProgram(const std::string& lightCalls);
+  Uniforms uniformsOf(unsigned program) const;
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
   void ensureTargets();
@@ -150,6 +151,7 @@ class Renderer {
   std::map<std::string, SceneProgram> scenePrograms_;
   std::string lightCalls_;  // this frame's arrangement, the programs' key
   int shadowLightViewProjection_ = -1, maskViewProjection_ = -1;
+  std::unique_ptr<Uniforms> skyUniforms_;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;
   unsigned colorTexture_ = 0, normalTexture_ = 0, planeTexture_ = 0, idTexture_ = 0, depthTexture_ = 0;
   unsigned whiteTexture_ = 0;

@@ -7,7 +7,6 @@ boxes; distance to the camera vs the image plane follows the ray angle;
 colours follow Replicator's hash; and the bytes do not depend on the thread
 count, while another seed changes them."""
 import glob
-import hashlib
 import json
 import math
 import os
@@ -18,29 +17,14 @@ import tempfile
 import numpy as np
 from PIL import Image
 
+from checklib import check, dataset_hashes, finish
+
 BOX2D = [("semanticId", "<u4"), ("x_min", "<i4"), ("y_min", "<i4"), ("x_max", "<i4"), ("y_max", "<i4"),
          ("occlusionRatio", "<f4")]
 BOX3D = [("semanticId", "<u4"), ("x_min", "<f4"), ("y_min", "<f4"), ("z_min", "<f4"), ("x_max", "<f4"),
          ("y_max", "<f4"), ("z_max", "<f4"), ("transform", "<f4", (4, 4)), ("occlusionRatio", "<f4")]
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-
-
 def run(binary, scene, out, *extra):
     subprocess.run([binary, "run", scene, "--out", out, *extra], check=True, capture_output=True)
-
-
-def digest(folder):
-    # run_summary.json holds timings: the one file allowed to differ.
-    result = {}
-    for path in sorted(glob.glob(f"{folder}/**/*", recursive=True)):
-        if os.path.isfile(path) and os.path.basename(path) != "run_summary.json":
-            result[os.path.relpath(path, folder)] = hashlib.sha256(open(path, "rb").read()).hexdigest()
-    return result
 
 
 def replicator_color(i):
@@ -184,7 +168,7 @@ def main():
         run(binary, scene, f"{tmp}/four", "--threads", "4")
         run(binary, scene, f"{tmp}/again", "--threads", "2")
         run(binary, scene, f"{tmp}/other", "--seed", "5")
-        one, four, again, other = (digest(f"{tmp}/{n}") for n in ("one", "four", "again", "other"))
+        one, four, again, other = (dataset_hashes(f"{tmp}/{n}") for n in ("one", "four", "again", "other"))
         check(one == four, "threads 1 and 4 wrote different bytes")
         check(one == again, "the same seed wrote different bytes")
         check(one != other, "another seed wrote the same bytes")
@@ -193,19 +177,18 @@ def main():
         check(not glob.glob(f"{tmp}/one/**/*.tmp-*", recursive=True), "temporary files left behind")
         for x in ("0000", "0001", "0002"):
             check_frame(f"{tmp}/one", x)
-        check(len(one) == 1 + 3 * 29 + 3, f"{len(one)} files")  # metadata, 29 per frame, COCO, contact sheet, manifest
+        # The dataset's own files (the hashes above also cover .sdgbehave/):
+        # metadata, 29 per frame, COCO, contact sheet, manifest.
+        visible = [name for name in one if not name.startswith(".sdgbehave")]
+        check(len(visible) == 1 + 3 * 29 + 3, f"{len(visible)} files")
         check_coco(f"{tmp}/one")
         summary = json.load(open(f"{tmp}/one/run_summary.json"))
-        check(summary["frames"] == 3 and summary["seed"] == 4 and summary["files_written"] == len(one),
+        check(summary["frames"] == 3 and summary["seed"] == 4 and summary["files_written"] == len(visible),
               f"run summary {summary}")
         check(set(summary["seconds"]) == {"load", "preroll", "behaviors", "render", "annotate",
                                           "encode_write_all_threads", "total"}, "summary stages")
         check(summary["renderer"]["backend"] == "osmesa" and summary["peak_rss_mb"] > 0, "summary renderer, memory")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print("ok")
-    return 0
+    return finish()
 
 
 if __name__ == "__main__":

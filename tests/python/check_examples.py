@@ -13,6 +13,8 @@ import tempfile
 import numpy as np
 from PIL import Image
 
+from checklib import failures, finish
+
 
 def run(binary, scene, out, *extra):
     result = subprocess.run([binary, "run", scene, "--out", out, "--frames", "2", "--resolution", "64x48", *extra],
@@ -22,7 +24,6 @@ def run(binary, scene, out, *extra):
 
 def main():
     binary, examples = sys.argv[1:3]
-    failures = []
     with tempfile.TemporaryDirectory() as tmp:
         for scene in sorted(glob.glob(f"{examples}/*.yaml")):
             out = f"{tmp}/{os.path.basename(scene)}"
@@ -69,11 +70,7 @@ def main():
                 failures.append(f"writer_boxes: loose {l} does not contain tight {t}")
         if len(np.load(f"{boxes}/bounding_box_3d_0000.npy")) != 2:
             failures.append("writer_boxes: expected two 3D boxes")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print("ok")
-    return 0
+    return finish()
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@ import subprocess
 import sys
 import tempfile
 
+from checklib import failures, finish
+
 
 def record(binary, scene, seed, path):
     subprocess.run([binary, "run", scene, "--no-render", "--frames", "6", "--seed", str(seed), "--record", path],
@@ -23,7 +25,6 @@ def main():
         b = record(binary, scene, 10, os.path.join(tmp, "b.jsonl"))
         c = record(binary, scene, 11, os.path.join(tmp, "c.jsonl"))
     lines = [json.loads(line) for line in a.decode().splitlines()]
-    failures = []
     if not lines or lines[0].get("event") != "preroll" or not isinstance(lines[0].get("settle"), list):
         failures.append(f"the first line is not the pre-roll line: {lines[:1]}")
     lines = lines[1:]
@@ -43,11 +44,7 @@ def main():
         failures.append("another seed gave the same record")
     if not lines[0]["changes"]:
         failures.append("frame 0 recorded no changes")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print(f"ok: {len(lines)} lines, deterministic")
-    return 0
+    return finish(f"ok: {len(lines)} lines, deterministic")
 
 
 if __name__ == "__main__":

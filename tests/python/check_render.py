@@ -8,6 +8,8 @@ import tempfile
 import numpy as np
 from PIL import Image
 
+from checklib import failures, finish
+
 
 def main():
     binary, scene = sys.argv[1:3]
@@ -17,18 +19,13 @@ def main():
                        check=True, capture_output=True)
         image = Image.open(out)
         pixels = np.asarray(image)
-    failures = []
     if image.mode != "RGBA" or pixels.shape != (120, 160, 4):
         failures.append(f"mode {image.mode}, shape {pixels.shape}")
     if (pixels[..., 3] != 255).any():
         failures.append("alpha is not 255 everywhere")
     if pixels[..., :3].std() < 5:
         failures.append("the image is nearly flat")
-    if failures:
-        print("\n".join(failures))
-        return 1
-    print(f"ok: {pixels.shape}, mean {pixels[..., :3].mean():.1f}")
-    return 0
+    return finish(f"ok: {pixels.shape}, mean {pixels[..., :3].mean():.1f}")
 
 
 if __name__ == "__main__":
