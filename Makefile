@@ -28,10 +28,11 @@ bench: build
 	@tools/bench.sh $(BUILD)
 
 # The suite under AddressSanitizer + UndefinedBehaviorSanitizer; Mesa's own
-# allocations are suppressed (tests/lsan.supp).
+# allocations are suppressed (tests/lsan.supp). tools/asan-test.sh says why
+# a test that failed only by a crash of LeakSanitizer's tracer is rerun once.
 asan:
-	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp $(MAKE) test PRESET=asan
+	@$(MAKE) build PRESET=asan
+	@JOBS=$(JOBS) tools/asan-test.sh build/asan
 
 # libFuzzer on the scene loader and the --set parser, FUZZ_SECONDS each (60).
 fuzz: deps
