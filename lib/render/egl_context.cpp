@@ -129,9 +129,7 @@ class EglContext final : public GlContext {
     context_ = egl_.createContext(display_, config, EGL_NO_CONTEXT, contextAttribs);
     if (context_ == EGL_NO_CONTEXT)
       throw RunError("EGL back end: " + device_ + " cannot create an OpenGL 3.3 core context: " + hex(egl_.getError()));
-    if (!egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw RunError("EGL back end: cannot make the context current without a surface on " + device_ + ": " +
-                     hex(egl_.getError()));
+    makeCurrent();
     auto getProc = egl_.getProcAddress;
     if (std::string missing = gl_.load([getProc](const char* name) { return reinterpret_cast<void*>(getProc(name)); });
         !missing.empty())
@@ -146,6 +144,13 @@ class EglContext final : public GlContext {
       if (context_ != EGL_NO_CONTEXT) egl_.destroyContext(display_, context_);
     }
   }
+
+  void makeCurrent() override {
+    if (!egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw RunError("EGL back end: cannot make the context current without a surface on " + device_ + ": " +
+                     hex(egl_.getError()));
+  }
+  void release() override { egl_.makeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
   std::string backend() const override { return "egl"; }
   std::string device() const override { return device_; }

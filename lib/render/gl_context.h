@@ -17,6 +17,11 @@ class GlContext {
   virtual std::string backend() const = 0;
   // Which device: "llvmpipe (CPU)", "EGL device 0 (/dev/dri/card0)", ...
   virtual std::string device() const = 0;
+  // A context is current on the thread that created it. release() unbinds
+  // it there so that another thread can makeCurrent() it (a renderer brought
+  // up on a helper thread, then used by the run's thread). RunError on failure.
+  virtual void makeCurrent() = 0;
+  virtual void release() = 0;
   // GL_RENDERER / GL_VERSION strings, for the run summary.
   std::string rendererName() const;
   std::string versionName() const;

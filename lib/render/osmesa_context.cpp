@@ -44,9 +44,7 @@ class OsMesaContext final : public GlContext {
                            OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
     context_ = create(attribs, nullptr);
     if (!context_) throw RunError("OSMesa back end: cannot create an OpenGL 3.3 core profile context");
-    // OSMesa needs a buffer to make the context current; frames go to FBOs.
-    if (!makeCurrent_(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
-      throw RunError("OSMesa back end: cannot make the context current");
+    makeCurrent();
     if (std::string missing = gl_.load([getProc](const char* name) { return reinterpret_cast<void*>(getProc(name)); });
         !missing.empty())
       throw RunError("OSMesa back end: the GL function " + missing + " is missing");
@@ -56,6 +54,13 @@ class OsMesaContext final : public GlContext {
     if (context_) destroy_(context_);
     // The library stays loaded: Mesa registers atexit handlers.
   }
+
+  // OSMesa needs a buffer to make the context current; frames go to FBOs.
+  void makeCurrent() override {
+    if (!makeCurrent_(context_, buffer_.data(), GL_UNSIGNED_BYTE, 1, 1))
+      throw RunError("OSMesa back end: cannot make the context current");
+  }
+  void release() override { makeCurrent_(nullptr, nullptr, 0, 0, 0); }
 
   std::string backend() const override { return "osmesa"; }
   std::string device() const override { return "CPU (OSMesa)"; }

@@ -90,6 +90,15 @@ void setMatrix(const GlApi& gl, int location, const Matrix4d& m) {
   gl.glUniformMatrix4fv(location, 1, GL_FALSE, f.data());
 }
 
+// Mipmaps, trilinear filtering and repeat: how every scene texture samples.
+void useTextureSampling(const GlApi& gl) {
+  gl.glGenerateMipmap(GL_TEXTURE_2D);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+}
+
 unsigned makeTexture(const GlApi& gl, GLint internalFormat, int w, int h, GLenum format, GLenum type) {
   unsigned t = 0;
   gl.glGenTextures(1, &t);
@@ -156,9 +165,15 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
   GLenum none = GL_NONE;
   gl_.glDrawBuffers(1, &none);
-  const uint8_t white[4] = {255, 255, 255, 255};
-  whiteTexture_ = makeTexture(gl_, GL_RGBA8, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE);
-  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+  // Bound where a material has no texture (the shader then ignores it). It
+  // has the format, a full mip chain and the sampling of a loaded texture:
+  // llvmpipe compiles a shader variant per texture state (a 1 x 1 or 2 x 2
+  // texture gets its own), so untextured and textured draws share one, and
+  // a warm-up frame without textures compiles what textured frames use.
+  const std::vector<uint8_t> white(64 * 64 * 4, 255);
+  whiteTexture_ = makeTexture(gl_, GL_SRGB8_ALPHA8, 64, 64, GL_RGBA, GL_UNSIGNED_BYTE);
+  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, white.data());
+  useTextureSampling(gl_);
 }
 
 Renderer::~Renderer() {
@@ -282,11 +297,7 @@ const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std
   // sRGB storage: sampling returns linear colour for shading.
   gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, GLsizei(image.width), GLsizei(image.height), 0, GL_RGBA,
                    GL_UNSIGNED_BYTE, image.pixels.data());
-  gl_.glGenerateMipmap(GL_TEXTURE_2D);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  gl_.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  useTextureSampling(gl_);
   int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
   return textures_.emplace(path, GpuTexture{t, levels}).first->second;
 }
@@ -328,6 +339,27 @@ Eigen::AlignedBox3d Renderer::sceneBounds(const RenderList& list) {
   }
   if (box.isEmpty()) box.extend(Vec3d::Zero());
   return box;
+}
+
+void Renderer::compileFor(const RenderList& list, size_t cameraIndex, const PassSelection& passes,
+                          const std::vector<std::vector<size_t>>* coverageGroups) {
+  resolveMeshes(list);
+  const Eigen::AlignedBox3d bounds = sceneBounds(list);
+  RenderList away = list;
+  RenderCamera& camera = away.cameras.at(cameraIndex);
+  // Beyond the scene along the view direction, still looking that way:
+  // every item lies behind the camera and is clipped before rasterising.
+  const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
+  const double past = bounds.diagonal().norm() + double(camera.nearClip) + 1.0;
+  camera.worldFromCamera.block<3, 1>(0, 3) = bounds.center() + forward * past;
+  FramePasses frame;
+  queue(away, cameraIndex, passes, 0);
+  if (coverageGroups) queueCoverage(away, cameraIndex, *coverageGroups, 0);
+  collect(0, frame);
+  if (coverageGroups) {
+    CoverageMasks masks;
+    collectCoverage(0, masks);
+  }
 }
 
 void Renderer::drawShadowMaps(const RenderList& list, const RenderCamera& camera) {

@@ -77,6 +77,14 @@ class Renderer {
                      int slot);
   void collectCoverage(int slot, CoverageMasks& out);
   static void coverageOf(const CoverageMasks& masks, std::vector<Coverage>& out);
+  // Issues every draw a frame of `list` makes (with coverage masks of
+  // `coverageGroups` when given), from the camera moved just past the
+  // scene so that nothing reaches a pixel, and reads the result back
+  // through slot 0. llvmpipe compiles a shader variant at its first draw,
+  // so this compiles what such frames need for a fraction of a frame's
+  // cost; the output is discarded and later frames are unchanged.
+  void compileFor(const RenderList& list, size_t cameraIndex, const PassSelection& passes,
+                  const std::vector<std::vector<size_t>>* coverageGroups);
   // Local bounds of an item's mesh (loads it if needed).
   Eigen::AlignedBox3f meshBounds(const RenderItem& item);
 

@@ -18,6 +18,7 @@
 #include "run/preroll.h"
 #include "run/progress.h"
 #include "run/record.h"
+#include "run/renderer_bringup.h"
 #include "run/run_summary.h"
 #include "run/scene_setup.h"
 #include "stage/path.h"
@@ -159,12 +160,6 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
           .string());
 
-  std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
-  Renderer renderer(*context, loaded.assets, settings);
-  result.renderer = context->rendererName();
-  result.backend = context->backend();
-  result.device = context->device();
-
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   WritePool pool(threads, 2 * size_t(threads));
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
@@ -173,6 +168,21 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   const bool annotations = writer.needsAnnotations() || cocoConfig != nullptr;
   PassSelection passes = writer.passesNeeded();
   passes.ids = passes.ids || cocoConfig != nullptr;  // COCO masks come from the ids
+  const bool coverage = writer.needsCoverage() || cocoConfig != nullptr;
+  // The renderer starts on a helper thread; with a pre-roll to hide behind,
+  // it also draws the stage as loaded once to compile its shader variants.
+  std::optional<WarmUpFrame> warmUp;
+  if (!scene.events.empty())
+    for (size_t c = 0; c < initialList.cameras.size(); ++c)
+      if (initialList.cameras[c].path == cameraPaths.front()) {
+        warmUp = WarmUpFrame{initialList, c, passes, coverage, {}};
+        if (coverage)
+          for (const SemanticEntity& e : computeSemantics(scene.stage, initialList, semanticTypes).entities)
+            warmUp->coverageGroups.push_back(e.items);
+        break;
+      }
+  RendererBringUp bringUp([&scene, &options] { return glContextFor(scene, options.render); }, loaded.assets, settings,
+                          std::move(warmUp));
   const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
@@ -247,6 +257,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   uint64_t queued = 0;
   auto collectPending = [&] {
     if (!pending) return;
+    Renderer& renderer = bringUp.renderer();
     renderer.collect(pending->slot, pending->job->passes);
     if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
     submit(*pending);
@@ -267,7 +278,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
     behaviorContext.iteration = iteration;
     behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
-      writeSimulationFrame(stage, renderer, cameraPaths, productNames, options.outDir, result.simulationFrames++);
+      writeSimulationFrame(stage, bringUp.renderer(), cameraPaths, productNames, options.outDir, result.simulationFrames++);
     };
     BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
     runtime.init();
@@ -284,6 +295,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     if (recorder) recorder->recordPreroll(setup.reports, scene.stage);
 
     runtime.play();
+    Renderer& renderer = bringUp.renderer();
     for (uint64_t frame = first; frame < end; ++frame) {
       t0 = Clock::now();
       runtime.update();
@@ -322,7 +334,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
         productPasses.ids = passes.ids || toSheet;
         renderer.queue(list, cameraIndex, productPasses, slot);
         std::shared_ptr<Renderer::CoverageMasks> masks;
-        if (writer.needsCoverage() || cocoConfig) {
+        if (coverage) {
           masks = std::make_shared<Renderer::CoverageMasks>(spareMasks.take());
           renderer.queueCoverage(list, cameraIndex, groups, slot);
         }
@@ -340,6 +352,10 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   }
   collectPending();
   progress.finish();
+  GlContext& context = bringUp.context();
+  result.renderer = context.rendererName();
+  result.backend = context.backend();
+  result.device = context.device();
   scene.stage = original;
   if (recorder) recorder->close();
   pool.finish();
