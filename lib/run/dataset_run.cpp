@@ -175,10 +175,12 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   if (!scene.events.empty())
     for (size_t c = 0; c < initialList.cameras.size(); ++c)
       if (initialList.cameras[c].path == cameraPaths.front()) {
-        warmUp = WarmUpFrame{initialList, c, passes, coverage, {}};
-        if (coverage)
+        warmUp = WarmUpFrame{initialList, c, passes, std::nullopt};
+        if (coverage) {
+          warmUp->coverageGroups.emplace();
           for (const SemanticEntity& e : computeSemantics(scene.stage, initialList, semanticTypes).entities)
-            warmUp->coverageGroups.push_back(e.items);
+            warmUp->coverageGroups->push_back(e.items);
+        }
         break;
       }
   RendererBringUp bringUp([&scene, &options] { return glContextFor(scene, options.render); }, loaded.assets, settings,

@@ -21,7 +21,7 @@ void RendererBringUp::bringUp(std::optional<WarmUpFrame> warmUp) {
   if (warmUp) {
     try {
       renderer_->compileFor(warmUp->list, warmUp->cameraIndex, warmUp->passes,
-                            warmUp->coverage ? &warmUp->coverageGroups : nullptr);
+                            warmUp->coverageGroups ? &*warmUp->coverageGroups : nullptr);
     } catch (...) {
       renderer_.reset();  // its GL objects go while the context is current here
       context_.reset();

@@ -26,8 +26,8 @@ struct WarmUpFrame {
   RenderList list;
   size_t cameraIndex = 0;
   PassSelection passes;
-  bool coverage = false;  // also draw the coverage masks of these groups
-  std::vector<std::vector<size_t>> coverageGroups;
+  // The entities whose coverage masks the run draws; none: it draws none.
+  std::optional<std::vector<std::vector<size_t>>> coverageGroups;
 };
 
 class RendererBringUp {

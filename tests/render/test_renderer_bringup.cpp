@@ -40,7 +40,7 @@ TEST_CASE("renderer bring-up: warmed up on a helper thread, it renders the same 
   settings.width = settings.height = 80;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   RestoreSharedContext restore;
-  WarmUpFrame warmUp{direct.list, 0, PassSelection{}, true, {{0}, {1}, {2}}};
+  WarmUpFrame warmUp{direct.list, 0, PassSelection{}, std::vector<std::vector<size_t>>{{0}, {1}, {2}}};
   RendererBringUp bringUp(createOsMesaContext, assets(), settings, warmUp);
   Renderer& renderer = bringUp.renderer();
   FramePasses frame;
@@ -86,7 +86,7 @@ TEST_CASE("renderer bring-up: a warm-up frame that fails leaves the error to the
   settings.width = settings.height = 32;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   RestoreSharedContext restore;
-  WarmUpFrame broken{direct.list, 0, PassSelection{}, false, {}};
+  WarmUpFrame broken{direct.list, 0, PassSelection{}, std::nullopt};
   broken.list.items[1].mesh.shape = PrimType::Mesh;
   broken.list.items[1].mesh.asset = "props/no_such_mesh.glb";
   broken.list.items[1].meshId.clear();
