@@ -10,9 +10,11 @@ namespace {
 
 constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
 
-// Items whose parts take the same material inputs can share a draw call.
+// Items whose parts take the same material inputs can share a draw call
+// (the texture and its projection pick the program).
 bool sameMaterialSource(const RenderItem& a, const RenderItem& b) {
-  return a.material.fromPrim == b.material.fromPrim && a.material.texture == b.material.texture;
+  return a.material.fromPrim == b.material.fromPrim && a.material.texture == b.material.texture &&
+         a.material.projectUvw == b.material.projectUvw;
 }
 
 void fillRecord(const RenderItem& item, uint32_t id, InstanceRecord& r) {
@@ -24,7 +26,7 @@ void fillRecord(const RenderItem& item, uint32_t id, InstanceRecord& r) {
   for (int c = 0; c < 3; ++c) r.baseColor[c] = m.baseColor[c];
   r.surface[0] = m.roughness;
   r.surface[1] = m.metallic;
-  r.surface[2] = m.projectUvw ? 1.0f : 0.0f;
+  r.surface[2] = 0.0f;
   r.surface[3] = 0.0f;
   const double radians = double(m.textureRotate) * M_PI / 180.0;
   r.textureTransform[0] = m.textureScale.x();
@@ -75,7 +77,8 @@ void InstanceBatches::arrange(const RenderList& list, const std::vector<uint32_t
     if (ra != rb) return ra < rb;
     const RenderMaterial &ma = list.items[ia].material, &mb = list.items[ib].material;
     if (ma.fromPrim != mb.fromPrim) return ma.fromPrim < mb.fromPrim;
-    return ma.texture < mb.texture;
+    if (ma.texture != mb.texture) return ma.texture < mb.texture;
+    return ma.projectUvw < mb.projectUvw;
   });
   records_.resize(order_.size());
   byMesh_.clear();

@@ -5,8 +5,9 @@
 // draw call costs 3-4 microseconds of driver time in every pass.
 //
 // The order depends only on the list itself (where each mesh first appears,
-// then the material's source and texture), never on what was loaded before,
-// so every frame and every shard of a run draws a scene the same way.
+// then the material's source, texture and projection), never on what was
+// loaded before, so every frame and every shard of a run draws a scene the
+// same way.
 #include <cstdint>
 #include <vector>
 
@@ -19,14 +20,14 @@ struct InstanceRecord {
   float worldFromLocal[16];  // column-major
   float normalMatrix[9];     // inverse transpose of the upper 3 x 3, column-major
   float baseColor[3];
-  float surface[4];          // roughness, metallic, projectUvw (0 or 1), unused
+  float surface[4];          // roughness, metallic, unused, unused
   float textureTransform[4]; // scale x, scale y, cos and sin of the rotation
   uint32_t id;               // instance id, or the coverage bit
 };
 static_assert(sizeof(InstanceRecord) == 37 * 4, "the vertex attribute offsets assume a packed record");
 
 // A run of records that share a mesh (and, for shading batches, a material
-// source and texture); `item` is the first of them, for the material.
+// source, texture and projection); `item` is the first of them, for the material.
 struct InstanceBatch {
   uint32_t first = 0;
   uint32_t count = 0;

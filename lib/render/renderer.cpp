@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "assets/image.h"
+#include "assets/mipmaps.h"
 #include "core/diagnostics.h"
 #include "render/camera_math.h"
 #include "render/shaders.h"
@@ -25,7 +26,7 @@ void FramePasses::resize(int w, int h) {
   instanceIds.resize(n);
 }
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uHasDome) X(uHasTexture) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
 
 // Uniform locations, looked up once per program instead of per draw (the
 // sky program uses a few of the same names; the rest stay -1 for it).
@@ -90,13 +91,25 @@ void setMatrix(const GlApi& gl, int location, const Matrix4d& m) {
   gl.glUniformMatrix4fv(location, 1, GL_FALSE, f.data());
 }
 
-// Mipmaps, trilinear filtering and repeat: how every scene texture samples.
-void useTextureSampling(const GlApi& gl) {
-  gl.glGenerateMipmap(GL_TEXTURE_2D);
+// An sRGB texture with its mip chain, sampled trilinear with repeat: how
+// every scene texture is stored and sampled.
+unsigned makeSrgbTexture(const GlApi& gl, const ImageRgba8& image) {
+  unsigned t = 0;
+  gl.glGenTextures(1, &t);
+  gl.glBindTexture(GL_TEXTURE_2D, t);
+  gl.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // sRGB storage: sampling returns linear colour for shading.
+  gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, GLsizei(image.width), GLsizei(image.height), 0, GL_RGBA,
+                  GL_UNSIGNED_BYTE, image.pixels.data());
+  const std::vector<ImageRgba8> levels = srgbMipLevels(image);
+  for (size_t i = 0; i < levels.size(); ++i)
+    gl.glTexImage2D(GL_TEXTURE_2D, GLint(i + 1), GL_SRGB8_ALPHA8, GLsizei(levels[i].width), GLsizei(levels[i].height),
+                    0, GL_RGBA, GL_UNSIGNED_BYTE, levels[i].pixels.data());
   gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
   gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return t;
 }
 
 unsigned makeTexture(const GlApi& gl, GLint internalFormat, int w, int h, GLenum format, GLenum type) {
@@ -165,15 +178,12 @@ Renderer::Renderer(GlContext& context, const AssetResolver& assets, const Render
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
   GLenum none = GL_NONE;
   gl_.glDrawBuffers(1, &none);
-  // Bound where a material has no texture (the shader then ignores it). It
-  // has the format, a full mip chain and the sampling of a loaded texture:
-  // llvmpipe compiles a shader variant per texture state (a 1 x 1 or 2 x 2
-  // texture gets its own), so untextured and textured draws share one, and
-  // a warm-up frame without textures compiles what textured frames use.
-  const std::vector<uint8_t> white(64 * 64 * 4, 255);
-  whiteTexture_ = makeTexture(gl_, GL_SRGB8_ALPHA8, 64, 64, GL_RGBA, GL_UNSIGNED_BYTE);
-  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, 64, 64, 0, GL_RGBA, GL_UNSIGNED_BYTE, white.data());
-  useTextureSampling(gl_);
+  // Bound where a material has no texture (that program never samples it).
+  // It has the format, a full mip chain and the sampling of a loaded
+  // texture: llvmpipe compiles a shader variant per texture state (a 1 x 1
+  // or 2 x 2 texture gets its own), so a warm-up frame that draws the
+  // textured programs with it bound compiles what textured frames use.
+  whiteTexture_ = makeSrgbTexture(gl_, ImageRgba8{64, 64, std::vector<uint8_t>(64 * 64 * 4, 255)});
 }
 
 Renderer::~Renderer() {
@@ -290,14 +300,7 @@ const Renderer::GpuTexture& Renderer::texture(const std::string& path, const std
   } catch (const RunError& e) {
     throw RunError(primPath + ": " + e.what());
   }
-  unsigned t = 0;
-  gl_.glGenTextures(1, &t);
-  gl_.glBindTexture(GL_TEXTURE_2D, t);
-  gl_.glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  // sRGB storage: sampling returns linear colour for shading.
-  gl_.glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, GLsizei(image.width), GLsizei(image.height), 0, GL_RGBA,
-                   GL_UNSIGNED_BYTE, image.pixels.data());
-  useTextureSampling(gl_);
+  const unsigned t = makeSrgbTexture(gl_, image);
   int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
   return textures_.emplace(path, GpuTexture{t, levels}).first->second;
 }
@@ -310,16 +313,53 @@ Renderer::Uniforms Renderer::uniformsOf(unsigned program) const {
   return u;
 }
 
-const Renderer::Uniforms& Renderer::sceneProgram(const std::string& lightCalls) {
-  auto it = scenePrograms_.find(lightCalls);
+const Renderer::Uniforms& Renderer::sceneVariant(int textureMode) {
+  const SceneProgram*& variant = frameVariants_[textureMode];
+  if (variant) {
+    gl_.glUseProgram(variant->program);
+    return *variant->uniforms;
+  }
+  variantKey_.assign(lightCalls_);
+  variantKey_ += "#define TEXTURE_MODE ";
+  variantKey_ += char('0' + textureMode);
+  variantKey_ += '\n';
+  auto it = scenePrograms_.find(variantKey_);
   if (it == scenePrograms_.end()) {
     SceneProgram p;
-    p.program = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment, true, lightCalls.c_str());
+    p.program = link(gl_, shaders::kSceneVertex, shaders::kSceneFragment, true, variantKey_.c_str());
     p.uniforms = std::make_unique<Uniforms>(uniformsOf(p.program));
-    it = scenePrograms_.emplace(lightCalls, std::move(p)).first;
+    it = scenePrograms_.emplace(variantKey_, std::move(p)).first;
   }
-  gl_.glUseProgram(it->second.program);
-  return *it->second.uniforms;
+  variant = &it->second;
+  gl_.glUseProgram(variant->program);
+  uploadFrameUniforms(*variant->uniforms);
+  return *variant->uniforms;
+}
+
+void Renderer::uploadFrameUniforms(const Uniforms& u) const {
+  const FrameUniforms& f = frame_;
+  static_assert(sizeof(f.radiance) == 3 * shaders::kMaxLights * sizeof(float));
+  gl_.glUniformMatrix4fv(u.uViewProjection, 1, GL_FALSE, f.viewProjection.data());
+  gl_.glUniform3fv(u.uCameraPosition, 1, f.eye);
+  gl_.glUniform3fv(u.uCameraForward, 1, f.forward);
+  gl_.glUniform1f(u.uMetersPerUnit, f.metersPerUnit);
+  gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
+  gl_.glUniform3fv(u.uAmbient, 1, f.ambient);
+  gl_.glUniform1f(u.uShadowTexel, f.shadowTexel);
+  gl_.glUniform3fv(u.uLightRadiance, shaders::kMaxLights, f.radiance);
+  gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, f.position);
+  gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, f.direction);
+  gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, f.params);
+  gl_.glUniformMatrix4fv(u.uShadowMatrix, 4, GL_FALSE, f.shadowMatrices);
+  // Texture units: 0 surface, 1 dome, 2 the shadow atlas.
+  gl_.glUniform1i(u.uTexture, 0);
+  gl_.glUniform1i(u.uDome, 1);
+  gl_.glUniform1i(u.uShadowAtlas, 2);
+  if (f.dome) {
+    gl_.glUniformMatrix3fv(u.uDomeFromWorld, 1, GL_FALSE, f.domeFromWorld.data());
+    gl_.glUniform1f(u.uDomeLod, f.domeLod);
+    gl_.glUniform3fv(u.uDomeScale, 1, f.domeScale);
+  }
 }
 
 int Renderer::shadowMapSize() const {
@@ -353,7 +393,14 @@ void Renderer::compileFor(const RenderList& list, size_t cameraIndex, const Pass
   const double past = bounds.diagonal().norm() + double(camera.nearClip) + 1.0;
   camera.worldFromCamera.block<3, 1>(0, 3) = bounds.center() + forward * past;
   FramePasses frame;
-  queue(away, cameraIndex, passes, 0);
+  warmAllTextureModes_ = true;
+  try {
+    queue(away, cameraIndex, passes, 0);
+  } catch (...) {
+    warmAllTextureModes_ = false;
+    throw;
+  }
+  warmAllTextureModes_ = false;
   if (coverageGroups) queueCoverage(away, cameraIndex, *coverageGroups, 0);
   collect(0, frame);
   if (coverageGroups) {
@@ -431,8 +478,11 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glDepthFunc(GL_LESS);
 
   // Lights (the dome is the ambient term above).
-  float radiance[3 * shaders::kMaxLights] = {}, position[3 * shaders::kMaxLights] = {},
-        direction[3 * shaders::kMaxLights] = {}, params[4 * shaders::kMaxLights] = {};
+  FrameUniforms& f = frame_;
+  std::fill(std::begin(f.radiance), std::end(f.radiance), 0.0f);
+  std::fill(std::begin(f.position), std::end(f.position), 0.0f);
+  std::fill(std::begin(f.direction), std::end(f.direction), 0.0f);
+  std::fill(std::begin(f.params), std::end(f.params), 0.0f);
   int count = 0;
   lightCalls_.assign("#define ADD_LIGHTS");
   for (size_t i = 0; i < list.lights.size() && count < shaders::kMaxLights; ++i) {
@@ -443,16 +493,17 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
       if (shadowSlots_[k].light == i) shadowSlot = int(k);
     appendLightCall(lightCalls_, count, lightTypeCode(l.kind), shadowSlot);
     for (int c = 0; c < 3; ++c) {
-      radiance[3 * count + c] = l.radiance[c];
-      position[3 * count + c] = float(l.position[c]);
-      direction[3 * count + c] = float(l.direction[c]);
+      f.radiance[3 * count + c] = l.radiance[c];
+      f.position[3 * count + c] = float(l.position[c]);
+      f.direction[3 * count + c] = float(l.direction[c]);
     }
-    params[4 * count + 0] = l.radius;
-    params[4 * count + 1] = l.width;
-    params[4 * count + 2] = l.height;
-    params[4 * count + 3] = l.length;
+    f.params[4 * count + 0] = l.radius;
+    f.params[4 * count + 1] = l.width;
+    f.params[4 * count + 2] = l.height;
+    f.params[4 * count + 3] = l.length;
     ++count;
   }
+  lightCalls_ += texturedDome ? "\n#define HAS_DOME 1\n" : "\n#define HAS_DOME 0\n";
   const Matrix4d viewProjection = projectionMatrix(camera, w, h, jitter) * viewMatrix(camera);
   // Depth first, colour writes off: the expensive lighting below then runs
   // once per visible pixel instead of once per covering triangle.
@@ -462,48 +513,39 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   drawWholeMeshes(batches_, instanceBuffer_);
   gl_.glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   gl_.glDepthFunc(GL_LEQUAL);
-  lightCalls_.push_back('\n');
-  const Uniforms& u = sceneProgram(lightCalls_);
-  setMatrix(gl_, u.uViewProjection, viewProjection);
+
+  f.viewProjection = toFloat(viewProjection);
   const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
   const Vec3d forward = -camera.worldFromCamera.block<3, 1>(0, 2).normalized();
-  gl_.glUniform3f(u.uCameraPosition, float(eye.x()), float(eye.y()), float(eye.z()));
-  gl_.glUniform3f(u.uCameraForward, float(forward.x()), float(forward.y()), float(forward.z()));
-  gl_.glUniform1f(u.uMetersPerUnit, float(list.metersPerUnit));
-  gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
-  gl_.glUniform3f(u.uAmbient, ambient.x(), ambient.y(), ambient.z());
-  gl_.glUniform1f(u.uShadowTexel, 1.0f / float(2 * shadowMapSize()));
-
-  gl_.glUniform3fv(u.uLightRadiance, shaders::kMaxLights, radiance);
-  gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, position);
-  gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, direction);
-  gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, params);
-  // Texture units: 0 surface, 1 dome, 2 the shadow atlas.
-  gl_.glActiveTexture(GL_TEXTURE2);
-  gl_.glBindTexture(GL_TEXTURE_2D, shadowAtlas_);
-  gl_.glUniform1i(u.uShadowAtlas, 2);
-  float shadowMatrices[16 * 4] = {};
+  for (int c = 0; c < 3; ++c) {
+    f.eye[c] = float(eye[c]);
+    f.forward[c] = float(forward[c]);
+    f.ambient[c] = ambient[c];
+  }
+  f.metersPerUnit = float(list.metersPerUnit);
+  f.shadowTexel = 1.0f / float(2 * shadowMapSize());
+  std::fill(std::begin(f.shadowMatrices), std::end(f.shadowMatrices), 0.0f);
   for (size_t k = 0; k < shadowSlots_.size(); ++k) {
     Eigen::Matrix4f m = shadowSlots_[k].viewProjection.cast<float>();
-    std::copy_n(m.data(), 16, shadowMatrices + 16 * k);
+    std::copy_n(m.data(), 16, f.shadowMatrices + 16 * k);
   }
-  gl_.glUniformMatrix4fv(u.uShadowMatrix, 4, GL_FALSE, shadowMatrices);
+  gl_.glActiveTexture(GL_TEXTURE2);
+  gl_.glBindTexture(GL_TEXTURE_2D, shadowAtlas_);
   gl_.glActiveTexture(GL_TEXTURE1);
-  gl_.glUniform1i(u.uDome, 1);
-  gl_.glUniform1i(u.uHasDome, texturedDome ? 1 : 0);
+  f.dome = texturedDome != nullptr;
   if (texturedDome) {
     const GpuTexture& dome = texture(texturedDome->texture, texturedDome->path);
     gl_.glBindTexture(GL_TEXTURE_2D, dome.id);
-    Eigen::Matrix3f domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
-    gl_.glUniformMatrix3fv(u.uDomeFromWorld, 1, GL_FALSE, domeFromWorld.data());
-    gl_.glUniform1f(u.uDomeLod, float(std::max(0, dome.levels - 3)));  // a 4 x 2 texel average
-    gl_.glUniform3f(u.uDomeScale, texturedDome->radiance.x(), texturedDome->radiance.y(), texturedDome->radiance.z());
+    f.domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
+    f.domeLod = float(std::max(0, dome.levels - 3));  // a 4 x 2 texel average
+    for (int c = 0; c < 3; ++c) f.domeScale[c] = texturedDome->radiance[c];
   } else {
     gl_.glBindTexture(GL_TEXTURE_2D, whiteTexture_);
   }
-  gl_.glUniform1i(u.uTexture, 0);
   gl_.glActiveTexture(GL_TEXTURE0);
+  std::fill(std::begin(frameVariants_), std::end(frameVariants_), nullptr);
 
+  bool warmed = !warmAllTextureModes_;
   for (const InstanceBatch& batch : batches_.byMaterial()) {
     const GpuMesh& m = bindBatch(batch, instanceBuffer_);
     const RenderItem& item = list.items[batch.item];  // the batch shares its material source
@@ -512,16 +554,20 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
       // (the last two and the texture transform travel per instance).
       const bool useFile = !item.material.fromPrim && part.hasMaterial;
       const std::string& tex = useFile ? part.texture : item.material.texture;
-      gl_.glUniform1i(u.uUsePartMaterial, useFile ? 1 : 0);
-      if (useFile) {
-        gl_.glUniform3f(u.uPartBaseColor, part.baseColor.x(), part.baseColor.y(), part.baseColor.z());
-        gl_.glUniform2f(u.uPartSurface, part.roughness, part.metallic);
-      }
-      gl_.glUniform1i(u.uHasTexture, tex.empty() ? 0 : 1);
+      const int textureMode = tex.empty() ? 0 : item.material.projectUvw ? 2 : 1;
       gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath).id);
-      gl_.glDrawElementsInstanced(GL_TRIANGLES, GLsizei(part.indexCount), GL_UNSIGNED_INT,
-                                  reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t)),
-                                  GLsizei(batch.count));
+      const GLsizei indexCount = GLsizei(part.indexCount);
+      const void* firstIndex = reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t));
+      for (int mode = warmed ? textureMode : 0; mode < (warmed ? textureMode + 1 : 3); ++mode) {
+        const Uniforms& u = sceneVariant(mode);
+        gl_.glUniform1i(u.uUsePartMaterial, useFile ? 1 : 0);
+        if (useFile) {
+          gl_.glUniform3f(u.uPartBaseColor, part.baseColor.x(), part.baseColor.y(), part.baseColor.z());
+          gl_.glUniform2f(u.uPartSurface, part.roughness, part.metallic);
+        }
+        gl_.glDrawElementsInstanced(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, firstIndex, GLsizei(batch.count));
+      }
+      warmed = true;
     }
   }
   if (texturedDome) {

@@ -113,9 +113,12 @@ class Renderer {
   Eigen::AlignedBox3d sceneBounds(const RenderList& list);
   void drawShadowMaps(const RenderList& list, const RenderCamera& camera);
   int shadowMapSize() const;
-  // Makes the program for this arrangement of lights current (compiling it
-  // the first time) and returns its uniform locations.
-  const Uniforms& sceneProgram(const std::string& lightCalls);
+  // Makes the scene program for this frame's lights and `textureMode` (0
+  // none, 1 uvs, 2 triplanar) current, compiling it the first time and
+  // giving it this frame's uniforms the first time in a frame; returns its
+  // uniform locations.
+  const Uniforms& sceneVariant(int textureMode);
+  void uploadFrameUniforms(const Uniforms& u) const;
   Uniforms uniformsOf(unsigned program) const;
   void drawScene(const RenderList& list, const RenderCamera& camera, const Eigen::Vector2d& jitter);
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
@@ -157,7 +160,25 @@ class Renderer {
     std::unique_ptr<Uniforms> uniforms;
   };
   std::map<std::string, SceneProgram> scenePrograms_;
-  std::string lightCalls_;  // this frame's arrangement, the programs' key
+  std::string lightCalls_;  // this frame's arrangement of lights and dome
+  std::string variantKey_;  // lightCalls_ and a texture mode: a program's key
+  // What every scene program of a frame is given, set once per frame.
+  struct FrameUniforms {
+    Eigen::Matrix4f viewProjection;
+    float eye[3], forward[3], ambient[3];
+    float metersPerUnit = 1, shadowTexel = 0;
+    float radiance[3 * 16], position[3 * 16], direction[3 * 16], params[4 * 16];
+    float shadowMatrices[16 * 4];
+    bool dome = false;
+    Eigen::Matrix3f domeFromWorld;
+    float domeLod = 0, domeScale[3];
+  };
+  FrameUniforms frame_;
+  // This frame's programs by texture mode, null until first used.
+  const SceneProgram* frameVariants_[3] = {nullptr, nullptr, nullptr};
+  // compileFor(): every texture mode is drawn once, so textures that
+  // behaviors bind later find their program compiled.
+  bool warmAllTextureModes_ = false;
   int shadowLightViewProjection_ = -1, maskViewProjection_ = -1;
   std::unique_ptr<Uniforms> skyUniforms_;
   unsigned framebuffer_ = 0, shadowFramebuffer_ = 0;

@@ -77,14 +77,13 @@ uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
 uniform float uMetersPerUnit;
 flat in vec3 vBaseColor;
-flat in vec4 vSurface;  // roughness, metallic, projectUvw
+flat in vec4 vSurface;  // roughness, metallic
 flat in vec4 vTextureTransform;  // scale, cos and sin of the rotation
 flat in uint vInstanceId;
 // A mesh file's own material for this part, shared by every instance.
 uniform int uUsePartMaterial;
 uniform vec3 uPartBaseColor;
 uniform vec2 uPartSurface;  // roughness, metallic
-uniform int uHasTexture;
 uniform sampler2D uTexture;
 uniform float uExposureScale;
 uniform vec3 uAmbient;
@@ -95,7 +94,6 @@ uniform vec4 uLightParams[MAX_LIGHTS];
 uniform mat4 uShadowMatrix[4];
 uniform sampler2DShadow uShadowAtlas;  // 2 x 2 tiles, one per shadow slot
 uniform float uShadowTexel;
-uniform int uHasDome;
 uniform sampler2D uDome;
 uniform mat3 uDomeFromWorld;
 uniform float uDomeLod;
@@ -108,16 +106,24 @@ vec2 transformUv(vec2 uv) {
   return vec2(c * uv.x - s * uv.y, s * uv.x + c * uv.y);
 }
 
+// TEXTURE_MODE (0 none, 1 the mesh's uvs, 2 world-space triplanar) and
+// HAS_DOME are defined per program, not tested per pixel: llvmpipe runs both
+// sides of a branch on a uniform with lanes masked, so a runtime test would
+// make every pixel pay for every texture lookup.
 vec3 albedo(vec3 n, vec3 baseColor) {
-  if (uHasTexture == 0) return baseColor;
-  if (vSurface.z == 0.0) return texture(uTexture, transformUv(vUv)).rgb;
-  // World-space triplanar projection, blended by the normal.
+#if TEXTURE_MODE == 0
+  return baseColor;
+#elif TEXTURE_MODE == 1
+  return texture(uTexture, transformUv(vUv)).rgb;
+#else
+  // Blended by the normal.
   vec3 w = abs(n);
   w /= (w.x + w.y + w.z);
   vec3 x = texture(uTexture, transformUv(vWorldPosition.yz)).rgb;
   vec3 y = texture(uTexture, transformUv(vWorldPosition.xz)).rgb;
   vec3 z = texture(uTexture, transformUv(vWorldPosition.xy)).rgb;
   return x * w.x + y * w.y + z * w.z;
+#endif
 }
 
 // Fraction of the light that reaches this point: one bilinear PCF tap (the
@@ -188,8 +194,11 @@ void main() {
   vec3 base = albedo(n, part ? uPartBaseColor : vBaseColor);
   // Ambient from the dome: a blurred (high mip) lat-long lookup along the
   // normal approximates its irradiance; a dome without a texture is uniform.
+#if HAS_DOME
+  vec3 ambient = uDomeScale * textureLod(uDome, latLong(uDomeFromWorld * n), uDomeLod).rgb;
+#else
   vec3 ambient = uAmbient;
-  if (uHasDome != 0) ambient = uDomeScale * textureLod(uDome, latLong(uDomeFromWorld * n), uDomeLod).rgb;
+#endif
   vec3 radiance = base * (1.0 - metallic) * ambient;
   // One call per light, written out by the renderer with the light's type
   // and shadow slot as literals: the compiler folds every branch away.

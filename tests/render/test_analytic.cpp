@@ -22,6 +22,18 @@ int expectedSrgb8(double radiance, double exposureScale) {
 const char* kTopCamera = R"(
   /Cam: {type: Camera, translate: [0, 0, 10], focalLength: 24, clippingRange: [0.1, 100]}
 )";
+
+// Uniform light from a dome and an orthographic camera 4 units wide looking
+// down -Z: a card's texture shows flat, as stored.
+const std::string kFlatLitTopView = R"(  /Sky: {type: DomeLight, inputs:intensity: 1000}
+  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}
+)";
+
+// Red minus blue at a pixel: positive on split.png's red half.
+int redness(const FramePasses& f, int x, int y) {
+  size_t i = (size_t(y) * size_t(f.width) + size_t(x)) * 4;
+  return int(f.rgba[i]) - int(f.rgba[i + 2]);
+}
 }  // namespace
 
 TEST_CASE("render: a plane lit head-on by a distant light has the shading formula's value", "[render][analytic]") {
@@ -145,16 +157,10 @@ prims:
   /Looks/Split: {type: Material, inputs:diffuse_texture: images/split.png, inputs:texture_rotate: )" +
                                 std::to_string(rotate) + R"(}
   /Card: {type: Plane, width: 4, length: 4, material: /Looks/Split}
-  /Sky: {type: DomeLight, inputs:intensity: 1000}
-  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}
-)",
+)" + kFlatLitTopView,
                             settings);
   };
   // split.png: left half red, right half blue; the plane's uv runs 0..1.
-  auto redness = [](const FramePasses& f, int x, int y) {
-    size_t i = (size_t(y) * 64 + size_t(x)) * 4;
-    return int(f.rgba[i]) - int(f.rgba[i + 2]);
-  };
   auto plain = render(0.0f);
   auto rotated = render(90.0f);
   // Unrotated: the colour changes from left to right, not from top to bottom.
@@ -163,6 +169,31 @@ prims:
   // Rotated 90 degrees: the split runs the other way.
   CHECK(redness(rotated.frame, 32, 16) * redness(rotated.frame, 32, 48) < 0);
   CHECK(redness(rotated.frame, 16, 32) * redness(rotated.frame, 48, 32) > 0);
+}
+
+TEST_CASE("render: project_uvw maps a texture from world coordinates, the mesh's uvs otherwise", "[render][analytic]") {
+  // Two cards side by side in one frame (the renderer switches programs
+  // between them): the left one samples split.png once over its uvs, the
+  // right one repeats it every world unit.
+  RenderSettings settings;
+  settings.width = settings.height = 64;
+  auto r = test::renderYaml(R"(
+version: 1
+prims:
+  /Looks: {type: Scope}
+  /Looks/Uv: {type: Material, inputs:diffuse_texture: images/split.png}
+  /Looks/World: {type: Material, inputs:diffuse_texture: images/split.png, inputs:project_uvw: true}
+  /Left: {type: Plane, width: 2, length: 4, translate: [-1, 0, 0], material: /Looks/Uv}
+  /Right: {type: Plane, width: 2, length: 4, translate: [1, 0, 0], material: /Looks/World}
+)" + kFlatLitTopView,
+                            settings);
+  auto signChanges = [&](int from, int to) {
+    int changes = 0;
+    for (int x = from + 1; x < to; ++x) changes += (redness(r.frame, x, 32) > 0) != (redness(r.frame, x - 1, 32) > 0);
+    return changes;
+  };
+  CHECK(signChanges(1, 31) == 1);  // red to blue once, mid-card
+  CHECK(signChanges(33, 63) == 3);  // x = 0.5, 1 and 1.5: split, repeat, split
 }
 
 TEST_CASE("render: a distant light's shadow falls where the light direction puts it", "[render][analytic][shadows]") {
