@@ -26,9 +26,14 @@ std::vector<uint8_t> encodePng(std::span<const uint8_t> pixels, uint32_t width, 
   }
   try {
     png_set_write_fn(png, &out, appendBytes, noFlush);
-    int colorType = format == PngPixels::Rgba8 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_GRAY;
+    int colorType = format == PngPixels::Rgba8  ? PNG_COLOR_TYPE_RGBA
+                    : format == PngPixels::Rgb8 ? PNG_COLOR_TYPE_RGB
+                                                : PNG_COLOR_TYPE_GRAY;
     int bitDepth = format == PngPixels::Gray16 ? 16 : 8;
-    size_t bytesPerPixel = format == PngPixels::Rgba8 ? 4 : format == PngPixels::Gray16 ? 2 : 1;
+    size_t bytesPerPixel = format == PngPixels::Rgba8    ? 4
+                           : format == PngPixels::Rgb8   ? 3
+                           : format == PngPixels::Gray16 ? 2
+                                                         : 1;
     png_set_IHDR(png, info, width, height, bitDepth, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, options.zlibLevel);

@@ -8,7 +8,7 @@
 
 namespace sdg {
 
-enum class PngPixels { Rgba8, Gray8, Gray16 };
+enum class PngPixels { Rgba8, Rgb8, Gray8, Gray16 };
 
 struct PngOptions {
   int zlibLevel = 1;

@@ -1,0 +1,41 @@
+// PNG encoding: each pixel format reads back (through the project's own
+// libpng reader, which expands to RGBA8) with the values written.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "assets/image.h"
+#include "writers/png_encoder.h"
+
+using namespace sdg;
+
+namespace {
+ImageRgba8 roundTrip(const std::vector<uint8_t>& png) {
+  auto path = std::filesystem::temp_directory_path() / "sdg_png_roundtrip.png";
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  return loadPng(path.string());
+}
+}  // namespace
+
+TEST_CASE("png: RGBA, RGB and grey pixels read back as written", "[writers][png]") {
+  // 3 x 2 pixels with distinct values in every channel.
+  std::vector<uint8_t> rgba, rgb, grey;
+  for (uint8_t p = 0; p < 6; ++p) {
+    rgba.insert(rgba.end(), {uint8_t(10 * p), uint8_t(10 * p + 1), uint8_t(10 * p + 2), uint8_t(200 + p)});
+    rgb.insert(rgb.end(), {uint8_t(40 * p), uint8_t(40 * p + 3), uint8_t(40 * p + 7)});
+    grey.push_back(uint8_t(50 * p));
+  }
+  ImageRgba8 a = roundTrip(encodePng(rgba, 3, 2, PngPixels::Rgba8));
+  CHECK((a.width == 3 && a.height == 2));
+  CHECK(a.pixels == rgba);
+  ImageRgba8 b = roundTrip(encodePng(rgb, 3, 2, PngPixels::Rgb8));
+  for (size_t p = 0; p < 6; ++p) {
+    CAPTURE(p);
+    CHECK(std::vector<uint8_t>(b.pixels.begin() + ptrdiff_t(4 * p), b.pixels.begin() + ptrdiff_t(4 * p + 3)) ==
+          std::vector<uint8_t>(rgb.begin() + ptrdiff_t(3 * p), rgb.begin() + ptrdiff_t(3 * p + 3)));
+    CHECK(b.pixels[4 * p + 3] == 255);  // opaque
+  }
+  ImageRgba8 c = roundTrip(encodePng(grey, 3, 2, PngPixels::Gray8));
+  for (size_t p = 0; p < 6; ++p) CHECK(c.pixels[4 * p] == grey[p]);
+}
