@@ -558,6 +558,7 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
       gl_.glBindTexture(GL_TEXTURE_2D, tex.empty() ? whiteTexture_ : texture(tex, item.primPath).id);
       const GLsizei indexCount = GLsizei(part.indexCount);
       const void* firstIndex = reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t));
+      // The part's own mode; the warm-up's first part is drawn in all three.
       for (int mode = warmed ? textureMode : 0; mode < (warmed ? textureMode + 1 : 3); ++mode) {
         const Uniforms& u = sceneVariant(mode);
         gl_.glUniform1i(u.uUsePartMaterial, useFile ? 1 : 0);
