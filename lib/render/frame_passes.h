@@ -14,6 +14,8 @@ struct PassSelection {
   bool normals = true;    // normals and distanceToCamera
   bool imagePlane = true; // distanceToImagePlane
   bool ids = true;        // instanceIds
+
+  static constexpr PassSelection colourOnly() { return {false, false, false}; }
 };
 
 struct FramePasses {
@@ -25,7 +27,10 @@ struct FramePasses {
   std::vector<float> distanceToImagePlane;    // metres along the optical axis; +inf where nothing was hit
   std::vector<uint32_t> instanceIds;          // RenderItem::instanceId; 0 = background
 
-  void resize(int w, int h);
+  // Sizes colour and the buffers `passes` fills for w x h; the others keep
+  // what they hold (nothing, in a fresh frame), so a run that reads back
+  // colour alone never allocates or touches the 7 bytes a pixel it skips.
+  void resize(int w, int h, const PassSelection& passes);
   size_t pixelCount() const { return size_t(width) * size_t(height); }
 };
 

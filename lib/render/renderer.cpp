@@ -15,15 +15,17 @@
 
 namespace sdg {
 
-void FramePasses::resize(int w, int h) {
+void FramePasses::resize(int w, int h, const PassSelection& passes) {
   width = w;
   height = h;
   const size_t n = size_t(w) * size_t(h);
   rgba.resize(n * 4);
-  normals.resize(n * 4);
-  distanceToCamera.resize(n);
-  distanceToImagePlane.resize(n);
-  instanceIds.resize(n);
+  if (passes.normals) {
+    normals.resize(n * 4);
+    distanceToCamera.resize(n);
+  }
+  if (passes.imagePlane) distanceToImagePlane.resize(n);
+  if (passes.ids) instanceIds.resize(n);
 }
 
 #define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeFromWorld) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetersPerUnit) X(uPartBaseColor) X(uPartSurface) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
@@ -737,7 +739,7 @@ void Renderer::collect(int slot, FramePasses& out) {
     return;
   }
   const int w = settings_.width, h = settings_.height;
-  if (out.width != w || out.height != h) out.resize(w, h);
+  out.resize(w, h, r.passes);
   for (int attachment = 0; attachment < 4; ++attachment) {
     if (!wanted(attachment, r.passes)) continue;
     const size_t bytes = size_t(w) * size_t(h) * kAttachmentBytes[attachment];
@@ -751,8 +753,7 @@ void Renderer::collect(int slot, FramePasses& out) {
 }
 
 void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes) {
-  const int w = settings_.width, h = settings_.height;
-  if (out.width != w || out.height != h) out.resize(w, h);
+  out.resize(settings_.width, settings_.height, passes);
   drawFrame(list, cameraIndex, passes);
   const RenderCamera& camera = list.cameras[cameraIndex];
   readBack(out, false, passes);

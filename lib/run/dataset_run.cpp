@@ -91,8 +91,9 @@ void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vec
     for (size_t c = 0; c < list.cameras.size(); ++c) {
       if (list.cameras[c].path != cameraPaths[product]) continue;
       FramePasses passes;
-      renderer.render(list, c, passes);
-      std::vector<uint8_t> png = encodePng(passes.rgba, uint32_t(passes.width), uint32_t(passes.height), PngPixels::Rgba8);
+      renderer.render(list, c, passes, PassSelection::colourOnly());
+      std::vector<uint8_t> png = encodePng(passes.rgba, uint32_t(passes.width), uint32_t(passes.height),
+                                                PngPixels::Rgba8, PngOptions::renderedImage());
       writeFiles(outDir, {{"simulation/" + productNames[product] + "/" + name, std::move(png)}});
     }
 }

@@ -33,8 +33,9 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
   std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
   Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;
-  renderer.render(list, index, frame);
-  std::vector<uint8_t> png = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8);
+  renderer.render(list, index, frame, PassSelection::colourOnly());
+  std::vector<uint8_t> png = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8,
+                                        PngOptions::renderedImage());
   writeFileAtomic(options.outputPath, png);
   return QuickRenderResult{list.cameras[index].path, context->rendererName() + " via " + context->backend(), frame.width,
                            frame.height};

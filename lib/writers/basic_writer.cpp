@@ -105,17 +105,24 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
     return prefix(in.product, annotator) + kind + "_" + x + "." + ext;
   };
 
-  if (options_.getBool("rgb")) files.push_back({name("rgb", "rgb", "png"), encodePng(f.rgba, w, h, PngPixels::Rgba8)});
+  if (options_.getBool("rgb")) files.push_back({name("rgb", "rgb", "png"), encodePng(f.rgba, w, h, PngPixels::Rgba8, PngOptions::renderedImage())});
 
   // Segmentation images: RGBA colours from the id hash, or 16-bit ids.
   auto segmentation = [&](const std::vector<uint32_t>& ids, bool colorize) {
     if (colorize) {
       std::vector<uint8_t> rgba(ids.size() * 4);
       std::map<uint32_t, std::array<uint8_t, 4>> cache;
+      // Ids come in long runs along a row: look the colour up once per run.
+      uint32_t runId = 0;
+      std::array<uint8_t, 4> runColor{};
       for (size_t i = 0; i < ids.size(); ++i) {
-        auto it = cache.find(ids[i]);
-        if (it == cache.end()) it = cache.emplace(ids[i], idColor(ids[i])).first;
-        std::memcpy(&rgba[i * 4], it->second.data(), 4);
+        if (i == 0 || ids[i] != runId) {
+          runId = ids[i];
+          auto it = cache.find(runId);
+          if (it == cache.end()) it = cache.emplace(runId, idColor(runId)).first;
+          runColor = it->second;
+        }
+        std::memcpy(&rgba[i * 4], runColor.data(), 4);
       }
       return encodePng(rgba, w, h, PngPixels::Rgba8);
     }
@@ -236,7 +243,7 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
     std::vector<uint8_t> rgba(f.normals.size());
     for (size_t i = 0; i < f.normals.size(); ++i)
       rgba[i] = uint8_t(std::clamp((f.normals[i] * 0.5f + 0.5f) * 255.0f, 0.0f, 255.0f));
-    files.push_back({name("normals", "normals", "png"), encodePng(rgba, w, h, PngPixels::Rgba8)});
+    files.push_back({name("normals", "normals", "png"), encodePng(rgba, w, h, PngPixels::Rgba8, PngOptions::renderedImage())});
   }
   if (options_.getBool("camera_params"))
     files.push_back({name("camera_params", "camera_params", "json"),

@@ -1,6 +1,7 @@
 #include "writers/png_encoder.h"
 
 #include <png.h>
+#include <zlib.h>
 
 #include <stdexcept>
 
@@ -37,6 +38,7 @@ std::vector<uint8_t> encodePng(std::span<const uint8_t> pixels, uint32_t width, 
     png_set_IHDR(png, info, width, height, bitDepth, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, options.zlibLevel);
+    png_set_compression_strategy(png, options.runLengthOnly ? Z_RLE : Z_DEFAULT_STRATEGY);
     png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_write_info(png, info);
     if (bitDepth == 16) png_set_swap(png);  // PNG is big-endian; our samples are little-endian

@@ -282,6 +282,9 @@ prims:
   FramePasses colourOnly;
   renderer.render(full.list, 0, colourOnly, PassSelection{false, false, false});
   CHECK(colourOnly.rgba == full.frame.rgba);
+  // Buffers a run does not read back are never allocated.
+  CHECK((colourOnly.normals.empty() && colourOnly.distanceToCamera.empty() && colourOnly.distanceToImagePlane.empty() &&
+         colourOnly.instanceIds.empty()));
   // The pipelined path gives the same bytes as the synchronous one.
   FramePasses pipelined;
   renderer.queue(full.list, 0, PassSelection{}, 0);

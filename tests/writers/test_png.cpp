@@ -39,3 +39,20 @@ TEST_CASE("png: RGBA, RGB and grey pixels read back as written", "[writers][png]
   ImageRgba8 c = roundTrip(encodePng(grey, 3, 2, PngPixels::Gray8));
   for (size_t p = 0; p < 6; ++p) CHECK(c.pixels[4 * p] == grey[p]);
 }
+
+TEST_CASE("png: run-length matching for rendered images keeps every pixel and compresses a gradient", "[writers][png]") {
+  // A shaded 64 x 64 frame: smooth gradients with a hard-edged square, the
+  // content renderedImage() is meant for.
+  const uint32_t w = 64, h = 64;
+  std::vector<uint8_t> frame;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const bool square = x >= 20 && x < 40 && y >= 24 && y < 44;
+      frame.insert(frame.end(), {uint8_t(square ? 200 : 2 * x + y), uint8_t(square ? 30 : 3 * y), uint8_t(x ^ y), 255});
+    }
+  const std::vector<uint8_t> rle = encodePng(frame, w, h, PngPixels::Rgba8, PngOptions::renderedImage());
+  const std::vector<uint8_t> full = encodePng(frame, w, h, PngPixels::Rgba8);
+  CHECK(rle != full);  // the option reaches zlib
+  CHECK(roundTrip(rle).pixels == frame);
+  CHECK(rle.size() < frame.size() / 2);
+}
