@@ -124,11 +124,11 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
         }
         std::memcpy(&rgba[i * 4], runColor.data(), 4);
       }
-      return encodePng(rgba, w, h, PngPixels::Rgba8);
+      return encodePng(rgba, w, h, PngPixels::Rgba8, PngOptions::labelMap());
     }
     std::vector<uint16_t> grey(ids.size());
     for (size_t i = 0; i < ids.size(); ++i) grey[i] = uint16_t(std::min<uint32_t>(ids[i], 65535));
-    return encodePng(bytesOf(grey), w, h, PngPixels::Gray16);
+    return encodePng(bytesOf(grey), w, h, PngPixels::Gray16, PngOptions::labelMap());
   };
   auto idKey = [](uint32_t id, bool colorize) { return colorize ? colorKey(idColor(id)) : std::to_string(id); };
   // The distinct ids of a frame, ascending. They are small (render and
@@ -186,7 +186,8 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
   auto distance = [&](const char* kind, const std::vector<float>& d) {
     files.push_back({name(kind, kind, "npy"), encodeNpy("'<f4'", npyShape({h, w}), bytesOf(d))});
     if (options_.getBool("colorize_depth"))
-      files.push_back({name(kind, kind, "png"), encodePng(colorizeDistance(d), w, h, PngPixels::Gray8)});
+      files.push_back({name(kind, kind, "png"), encodePng(colorizeDistance(d), w, h, PngPixels::Gray8,
+                                                                   PngOptions::renderedImage())});
   };
   if (options_.getBool("distance_to_camera")) distance("distance_to_camera", f.distanceToCamera);
   if (options_.getBool("distance_to_image_plane")) distance("distance_to_image_plane", f.distanceToImagePlane);

@@ -97,7 +97,7 @@ struct Canvas {
 
 // Sheets and tiles are opaque: RGB, a quarter less to compress than RGBA.
 std::vector<uint8_t> encodeRgb(const std::vector<uint8_t>& rgb, int width, int height) {
-  return encodePng(rgb, uint32_t(width), uint32_t(height), PngPixels::Rgb8);
+  return encodePng(rgb, uint32_t(width), uint32_t(height), PngPixels::Rgb8, PngOptions::drawing());
 }
 
 }  // namespace

@@ -39,7 +39,10 @@ std::vector<uint8_t> encodePng(std::span<const uint8_t> pixels, uint32_t width, 
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, options.zlibLevel);
     png_set_compression_strategy(png, options.runLengthOnly ? Z_RLE : Z_DEFAULT_STRATEGY);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE,
+                   options.filter == PngFilter::None  ? PNG_FILTER_NONE
+                   : options.filter == PngFilter::Sub ? PNG_FILTER_SUB
+                                                      : PNG_FILTER_UP);
     png_write_info(png, info);
     if (bitDepth == 16) png_set_swap(png);  // PNG is big-endian; our samples are little-endian
     const size_t stride = width * bytesPerPixel;

@@ -40,9 +40,8 @@ TEST_CASE("png: RGBA, RGB and grey pixels read back as written", "[writers][png]
   for (size_t p = 0; p < 6; ++p) CHECK(c.pixels[4 * p] == grey[p]);
 }
 
-TEST_CASE("png: run-length matching for rendered images keeps every pixel and compresses a gradient", "[writers][png]") {
-  // A shaded 64 x 64 frame: smooth gradients with a hard-edged square, the
-  // content renderedImage() is meant for.
+TEST_CASE("png: every preset keeps every pixel and reaches libpng", "[writers][png]") {
+  // A shaded 64 x 64 frame: smooth gradients with a hard-edged square.
   const uint32_t w = 64, h = 64;
   std::vector<uint8_t> frame;
   for (uint32_t y = 0; y < h; ++y)
@@ -50,9 +49,12 @@ TEST_CASE("png: run-length matching for rendered images keeps every pixel and co
       const bool square = x >= 20 && x < 40 && y >= 24 && y < 44;
       frame.insert(frame.end(), {uint8_t(square ? 200 : 2 * x + y), uint8_t(square ? 30 : 3 * y), uint8_t(x ^ y), 255});
     }
-  const std::vector<uint8_t> rle = encodePng(frame, w, h, PngPixels::Rgba8, PngOptions::renderedImage());
-  const std::vector<uint8_t> full = encodePng(frame, w, h, PngPixels::Rgba8);
-  CHECK(rle != full);  // the option reaches zlib
-  CHECK(roundTrip(rle).pixels == frame);
-  CHECK(rle.size() < frame.size() / 2);
+  const std::vector<uint8_t> plain = encodePng(frame, w, h, PngPixels::Rgba8);
+  for (const PngOptions& options : {PngOptions::renderedImage(), PngOptions::labelMap(), PngOptions::drawing()}) {
+    CAPTURE(int(options.filter), options.runLengthOnly);
+    const std::vector<uint8_t> png = encodePng(frame, w, h, PngPixels::Rgba8, options);
+    CHECK(png != plain);  // the filter or the matching reached libpng and zlib
+    CHECK(roundTrip(png).pixels == frame);
+    CHECK(png.size() < frame.size());  // compressed, not stored
+  }
 }
