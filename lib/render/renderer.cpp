@@ -861,15 +861,21 @@ void Renderer::coverageOf(const CoverageMasks& masks, std::vector<Coverage>& out
     for (int glY = 0; glY < h; ++glY) {
       const uint32_t* row = pixels + size_t(glY) * size_t(w);
       const int y = h - 1 - glY;  // rows top to bottom
-      for (int x = 0; x < w; ++x) {
-        for (uint32_t bits = row[x]; bits; bits &= bits - 1) {
+      // A row is long runs of one mask (mostly 0): each run's groups are
+      // updated once, not once per pixel.
+      for (int x = 0; x < w;) {
+        const uint32_t mask = row[x];
+        int end = x + 1;
+        while (end < w && row[end] == mask) ++end;
+        for (uint32_t bits = mask; bits; bits &= bits - 1) {
           Coverage& c = out[layer * 32 + size_t(__builtin_ctz(bits))];
-          ++c.pixels;
+          c.pixels += uint64_t(end - x);
           c.xMin = std::min(c.xMin, x);
-          c.xMax = std::max(c.xMax, x);
+          c.xMax = std::max(c.xMax, end - 1);
           c.yMin = std::min(c.yMin, y);
           c.yMax = std::max(c.yMax, y);
         }
+        x = end;
       }
     }
   }

@@ -19,29 +19,33 @@ void annotate(const AnnotatorInputs& in, FrameAnnotations& out) {
   out.visiblePixels.assign(entities.size(), 0);
   std::vector<std::array<int, 4>> bounds(entities.size(), {f.width, f.height, -1, -1});
   const auto& ofRender = in.semantics.entityOfRenderId;
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t renderId = f.instanceIds[i];
-    if (renderId == 0) {
-      out.semanticIds[i] = kBackgroundId;
-      out.instanceIds[i] = kBackgroundId;
-      continue;
+  // A row is long runs of one render id: each run is looked up once.
+  for (int y = 0; y < f.height; ++y) {
+    const size_t rowStart = size_t(y) * size_t(f.width);
+    const uint32_t* row = f.instanceIds.data() + rowStart;
+    for (int x = 0; x < f.width;) {
+      const uint32_t renderId = row[x];
+      int end = x + 1;
+      while (end < f.width && row[end] == renderId) ++end;
+      const uint32_t e = renderId == 0 ? 0 : renderId < ofRender.size() ? ofRender[renderId] : 0;
+      uint32_t semanticId = renderId == 0 ? kBackgroundId : kUnlabelledId, instanceId = semanticId;
+      if (e != 0) {
+        const SemanticEntity& entity = entities[e - 1];
+        semanticId = entity.semanticId;
+        instanceId = entity.instanceId;
+        out.visiblePixels[e - 1] += uint64_t(end - x);
+        auto& b = bounds[e - 1];
+        b[0] = std::min(b[0], x);
+        b[1] = std::min(b[1], y);
+        b[2] = std::max(b[2], end - 1);
+        b[3] = std::max(b[3], y);
+      }
+      std::fill(out.semanticIds.begin() + std::ptrdiff_t(rowStart + size_t(x)),
+                out.semanticIds.begin() + std::ptrdiff_t(rowStart + size_t(end)), semanticId);
+      std::fill(out.instanceIds.begin() + std::ptrdiff_t(rowStart + size_t(x)),
+                out.instanceIds.begin() + std::ptrdiff_t(rowStart + size_t(end)), instanceId);
+      x = end;
     }
-    const uint32_t e = renderId < ofRender.size() ? ofRender[renderId] : 0;
-    if (e == 0) {
-      out.semanticIds[i] = kUnlabelledId;
-      out.instanceIds[i] = kUnlabelledId;
-      continue;
-    }
-    const SemanticEntity& entity = entities[e - 1];
-    out.semanticIds[i] = entity.semanticId;
-    out.instanceIds[i] = entity.instanceId;
-    ++out.visiblePixels[e - 1];
-    auto& b = bounds[e - 1];
-    const int x = int(i % size_t(f.width)), y = int(i / size_t(f.width));
-    b[0] = std::min(b[0], x);
-    b[1] = std::min(b[1], y);
-    b[2] = std::max(b[2], x);
-    b[3] = std::max(b[3], y);
   }
   // Occlusion: the fraction of the entity's unoccluded pixels that are hidden.
   out.occlusion.assign(entities.size(), 0.0f);

@@ -119,17 +119,26 @@ std::vector<uint8_t> contactSheetTile(uint64_t frame, const std::vector<uint8_t>
   tile.height = std::max(1, int(std::lround(double(height) * tile.width / width)));
   tile.rgb.assign(size_t(tile.width) * size_t(tile.height) * 3, 0);
   // Box filter: each thumbnail pixel averages the frame pixels it covers.
+  // Column spans are the same on every row: worked out once.
+  std::vector<std::pair<int, int>> columns(size_t(tile.width));
+  for (int tx = 0; tx < tile.width; ++tx) {
+    const int x0 = tx * width / tile.width;
+    columns[size_t(tx)] = {x0, std::max(x0 + 1, (tx + 1) * width / tile.width)};
+  }
+  std::vector<uint32_t> sums(size_t(tile.width) * 3);
   for (int ty = 0; ty < tile.height; ++ty) {
-    int y0 = ty * height / tile.height, y1 = std::max(y0 + 1, (ty + 1) * height / tile.height);
-    for (int tx = 0; tx < tile.width; ++tx) {
-      int x0 = tx * width / tile.width, x1 = std::max(x0 + 1, (tx + 1) * width / tile.width);
-      uint32_t sum[3] = {0, 0, 0};
-      for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-          for (int k = 0; k < 3; ++k) sum[k] += rgba[(size_t(y) * size_t(width) + size_t(x)) * 4 + size_t(k)];
-      const uint32_t count = uint32_t((y1 - y0) * (x1 - x0));
-      for (int k = 0; k < 3; ++k)
-        tile.rgb[(size_t(ty) * size_t(tile.width) + size_t(tx)) * 3 + size_t(k)] = uint8_t((sum[k] + count / 2) / count);
+    const int y0 = ty * height / tile.height, y1 = std::max(y0 + 1, (ty + 1) * height / tile.height);
+    std::fill(sums.begin(), sums.end(), 0u);
+    for (int y = y0; y < y1; ++y) {
+      const uint8_t* row = rgba.data() + size_t(y) * size_t(width) * 4;
+      for (size_t tx = 0; tx < columns.size(); ++tx)
+        for (int x = columns[tx].first; x < columns[tx].second; ++x)
+          for (size_t k = 0; k < 3; ++k) sums[tx * 3 + k] += row[size_t(x) * 4 + k];
+    }
+    uint8_t* out = tile.rgb.data() + size_t(ty) * size_t(tile.width) * 3;
+    for (size_t tx = 0; tx < columns.size(); ++tx) {
+      const uint32_t count = uint32_t((y1 - y0) * (columns[tx].second - columns[tx].first));
+      for (size_t k = 0; k < 3; ++k) out[tx * 3 + k] = uint8_t((sums[tx * 3 + k] + count / 2) / count);
     }
   }
   Canvas canvas{tile.width, tile.height, tile.rgb};
