@@ -359,6 +359,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   result.renderer = context.rendererName();
   result.backend = context.backend();
   result.device = context.device();
+  bringUp.retireInBackground();
   scene.stage = original;
   if (recorder) recorder->close();
   pool.finish();

@@ -55,6 +55,21 @@ GlContext& RendererBringUp::context() {
   return *context_;
 }
 
+void RendererBringUp::retireInBackground() {
+  renderer();  // joined, and current here
+  context_->release();
+  joined_ = false;
+  thread_ = std::thread([this] {
+    try {
+      context_->makeCurrent();
+    } catch (...) {
+      (void)renderer_.release();  // as in the destructor: it goes with the process
+    }
+    renderer_.reset();
+    context_.reset();
+  });
+}
+
 RendererBringUp::~RendererBringUp() {
   const bool wasJoined = joined_;
   join();

@@ -44,6 +44,11 @@ class RendererBringUp {
   // one to use it.
   Renderer& renderer();
   GlContext& context();
+  // Deletes the renderer and its context on a helper thread, so that their
+  // teardown (llvmpipe's threads, compiled shaders, buffers) overlaps the
+  // run's last writes; the destructor waits for it. Neither may be used
+  // afterwards.
+  void retireInBackground();
 
  private:
   void bringUp(std::optional<WarmUpFrame> warmUp);

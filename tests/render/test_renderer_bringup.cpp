@@ -97,3 +97,24 @@ TEST_CASE("renderer bring-up: a warm-up frame that fails leaves the error to the
   CHECK(frame.rgba == direct.frame.rgba);
   CHECK_THROWS_WITH(renderer.render(broken.list, 0, frame), Catch::Contains("no_such_mesh.glb"));
 }
+
+TEST_CASE("renderer bring-up: retired in the background, while another renderer goes on drawing", "[render][bringup]") {
+  RenderSettings settings;
+  settings.width = settings.height = 48;
+  test::RenderedScene direct = test::renderYaml(kScene, settings);
+  RestoreSharedContext restore;
+  {
+    RendererBringUp bringUp(createOsMesaContext, assets(), settings, std::nullopt);
+    FramePasses frame;
+    bringUp.renderer().render(direct.list, 0, frame);
+    CHECK(frame.rgba == direct.frame.rgba);
+    bringUp.retireInBackground();
+    // This thread has no context now; another one draws while the retired
+    // renderer's teardown runs beside it, and the destructor waits for it.
+    test::sharedContext().makeCurrent();
+    Renderer other(test::sharedContext(), assets(), settings);
+    FramePasses again;
+    other.render(direct.list, 0, again);
+    CHECK(again.rgba == direct.frame.rgba);
+  }
+}
