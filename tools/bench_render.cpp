@@ -155,7 +155,7 @@ int measureAll(int argc, char** argv) {
       runs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / 10);
     }
     std::sort(runs.begin(), runs.end());
-    std::printf("{\"name\": \"PNG encode 512x512 RGBA (zlib 1, SUB), one thread, %zu bytes\", \"unit\": "
+    std::printf("{\"name\": \"PNG encode 512x512 RGBA (zlib 1, SUB, run-length), one thread, %zu bytes\", \"unit\": "
                 "\"ms/frame\", \"median\": %.3f, \"min\": %.3f, \"max\": %.3f, \"fps\": %.1f}\n",
                 bytes, runs[2], runs.front(), runs.back(), 1000.0 / runs[2]);
   }

@@ -93,7 +93,7 @@ void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vec
       FramePasses passes;
       renderer.render(list, c, passes, PassSelection::colourOnly());
       std::vector<uint8_t> png = encodePng(passes.rgba, uint32_t(passes.width), uint32_t(passes.height),
-                                                PngPixels::Rgba8, PngOptions::renderedImage());
+                                           PngPixels::Rgba8, PngOptions::renderedImage());
       writeFiles(outDir, {{"simulation/" + productNames[product] + "/" + name, std::move(png)}});
     }
 }

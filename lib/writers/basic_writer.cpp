@@ -105,7 +105,8 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
     return prefix(in.product, annotator) + kind + "_" + x + "." + ext;
   };
 
-  if (options_.getBool("rgb")) files.push_back({name("rgb", "rgb", "png"), encodePng(f.rgba, w, h, PngPixels::Rgba8, PngOptions::renderedImage())});
+  if (options_.getBool("rgb"))
+    files.push_back({name("rgb", "rgb", "png"), encodePng(f.rgba, w, h, PngPixels::Rgba8, PngOptions::renderedImage())});
 
   // Segmentation images: RGBA colours from the id hash, or 16-bit ids.
   auto segmentation = [&](const std::vector<uint32_t>& ids, bool colorize) {
@@ -186,8 +187,8 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
   auto distance = [&](const char* kind, const std::vector<float>& d) {
     files.push_back({name(kind, kind, "npy"), encodeNpy("'<f4'", npyShape({h, w}), bytesOf(d))});
     if (options_.getBool("colorize_depth"))
-      files.push_back({name(kind, kind, "png"), encodePng(colorizeDistance(d), w, h, PngPixels::Gray8,
-                                                                   PngOptions::renderedImage())});
+      files.push_back(
+          {name(kind, kind, "png"), encodePng(colorizeDistance(d), w, h, PngPixels::Gray8, PngOptions::renderedImage())});
   };
   if (options_.getBool("distance_to_camera")) distance("distance_to_camera", f.distanceToCamera);
   if (options_.getBool("distance_to_image_plane")) distance("distance_to_image_plane", f.distanceToImagePlane);
