@@ -16,7 +16,10 @@ for threads in 1 2; do
   LP_NUM_THREADS=$threads "$build/tools/sdg_bench_render" >> "$lines"
 done
 rm -rf "$stage"
-# Whole-process dataset runs of the demo scene: 30 frames, 5 runs each.
+# Steady state of the demo scene as a dataset run: 600 frames at 512 x 512,
+# 5 runs per writer configuration. Steady state is the frames over the time
+# after the pre-roll (run_summary.json: total - load - preroll), so start-up
+# is not spread over the figure; the whole run's time is reported beside it.
 bin="$build/app/sdgbehave"
 off="--set writer.semantic_segmentation=false --set writer.bounding_box_2d_tight=false"
 off="$off --set writer.distance_to_image_plane=false --set writer.camera_params=false"
@@ -28,18 +31,21 @@ for config in "rgb only|$off" "the demo's annotators|" "every BasicWriter annota
   label=${config%%|*}
   flags=${config#*|}
   /usr/bin/python3 - "$bin" "$out" "$label" $flags >> "$lines" <<'PY'
-import json, statistics, subprocess, sys, time
+import json, subprocess, sys, time
 binary, out, label, flags = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
-times = []
+frames, steady, whole = 600, [], []
 for _ in range(5):
     start = time.perf_counter()
-    subprocess.run([binary, "run", "scenes/warehouse.yaml", "--frames", "30", "--out", out, "--overwrite", *flags],
-                   check=True, capture_output=True)
-    times.append((time.perf_counter() - start) * 1000 / 30)
-times.sort()
-print(json.dumps({"name": f"sdgbehave run demo 512x512, 30 frames, {label}", "unit": "ms/frame",
-                  "median": round(times[2], 3), "min": round(times[0], 3), "max": round(times[-1], 3),
-                  "fps": round(1000 / times[2], 1)}))
+    subprocess.run([binary, "run", "scenes/warehouse.yaml", "--frames", str(frames), "--seed", "10", "--out", out,
+                    "--overwrite", *flags], check=True, capture_output=True)
+    whole.append(time.perf_counter() - start)
+    s = json.load(open(f"{out}/run_summary.json"))["seconds"]
+    steady.append(1000 * (s["total"] - s["load"] - s["preroll"]) / frames)
+steady.sort()
+whole.sort()
+print(json.dumps({"name": f"sdgbehave run demo 512x512, {frames} frames, {label}, steady state", "unit": "ms/frame",
+                  "median": round(steady[2], 3), "min": round(steady[0], 3), "max": round(steady[-1], 3),
+                  "fps": round(1000 / steady[2], 1), "whole_process_s": round(whole[2], 3)}))
 PY
 done
 rm -rf "$out"
@@ -130,9 +136,11 @@ done
 import json, sys
 rows = [json.loads(l) for l in open(sys.argv[1]) if l.strip()]
 targets = {"4 pallets + 60 boxes + target + 3 lights, LP_NUM_THREADS=2": ">= 30 frames/s",
-           "demo_stage.yaml, LP_NUM_THREADS=2": ">= 60 frames/s (rgb-only target)",
+           "demo_stage.yaml (pipelined, colour read back), LP_NUM_THREADS=2": "(render only; rgb-only target below)",
            "10000 objects sharing a mesh, LP_NUM_THREADS=2": ">= 10 frames/s",
-           "every BasicWriter annotator": ">= 70% of rgb-only throughput",
+           "rgb only, steady state": ">= 60 frames/s",
+           "the demo's annotators, steady state": ">= 30 frames/s",
+           "every BasicWriter annotator, steady state": ">= 70% of rgb-only throughput",
            "stack 4 pallets x 15 crates, whole process": "< 0.2 s",
            "stack 4 pallets x 100 crates, whole process": "< 0.5 s",
            "validate scenes/warehouse.yaml, whole process": "< 30 ms",
