@@ -2,7 +2,8 @@
 # `make fuzz`: builds the libFuzzer harnesses (the `fuzz` preset: clang,
 # ASan + UBSan) and runs each for FUZZ_SECONDS (default 60), seeded with
 # every scene in scenes/ and tests/data. A crash leaves its input in
-# build/fuzz/artifacts/ and fails; add it to tests/data/fuzz_regressions/.
+# build/fuzz/artifacts/ and fails; add it to tests/data/fuzz_regressions/, whose
+# inputs the unit tests replay and the next fuzz run starts from.
 set -euo pipefail
 seconds=${FUZZ_SECONDS:-60}
 build=build/fuzz
@@ -10,6 +11,7 @@ cmake --preset fuzz >/dev/null
 cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides
 mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/artifacts"
 find scenes tests/data -name '*.yaml' -exec cp {} "$build/corpus/scene/" \;
+cp tests/data/fuzz_regressions/* "$build/corpus/scene/"
 printf '%s\n' 'render.resolution=[640,480]' '/World/Box.size=3' '/World/Box.xformOp:translate=[1,2,3]' \
   '/World/Box.exposedVar:locationRandomizer:interval=4' 'capture.frames=12' 'physics.require_settled=true' \
   '/World/Cam.orient=[0.7,0.7,0,0]' > "$build/corpus/set/seed1"
@@ -18,7 +20,16 @@ for harness in fuzz_scene_loader fuzz_overrides; do
   corpus=$build/corpus/scene
   [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
   echo "fuzz: $harness for ${seconds}s"
-  "$build/tests/fuzz/$harness" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
-    -artifact_prefix="$build/artifacts/$harness-" -print_final_stats=1 "$corpus" 2>&1 | tail -12 || status=1
+  log=$build/artifacts/$harness.log
+  if "$build/tests/fuzz/$harness" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=65536 \
+      -rss_limit_mb=2048 -timeout=10 -artifact_prefix="$build/artifacts/$harness-" -print_final_stats=1 \
+      "$corpus" >"$log" 2>&1; then
+    tail -6 "$log"
+  else
+    status=1
+    # The report, not libFuzzer's closing statistics, is what a reader needs.
+    sed -n '/^==[0-9]*==ERROR\|runtime error\|^ALARM\|out-of-memory/,/^SUMMARY/p' "$log" | head -60
+    grep -h 'Test unit written to' "$log" || tail -12 "$log"
+  fi
 done
 exit $status

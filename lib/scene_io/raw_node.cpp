@@ -49,6 +49,14 @@ class Converter {
       throw SceneError(locOf(node, fallback),
                        "the document expands to more than " + std::to_string(kMaxDocumentNodes) +
                            " nodes; YAML aliases (*name) that nest this deeply are refused");
+    // The parser bounds nesting in the text, but an alias used inside its own
+    // anchor (`&a [*a]`) makes a cycle that would recurse here without end.
+    if (depth_ >= kMaxDocumentDepth)
+      throw SceneError(locOf(node, fallback),
+                       "the document nests more than " + std::to_string(kMaxDocumentDepth) +
+                           " levels deep, counting through aliases; an alias used inside its own anchor "
+                           "(such as `&a [*a]`) nests without end");
+    DepthScope scope(depth_);
     RawNode out;
     out.loc = locOf(node, fallback);
     switch (node.Type()) {
@@ -90,10 +98,19 @@ class Converter {
   }
 
  private:
+  struct DepthScope {
+    explicit DepthScope(int& depth) : depth_(depth) { ++depth_; }
+    ~DepthScope() { --depth_; }
+    DepthScope(const DepthScope&) = delete;
+    DepthScope& operator=(const DepthScope&) = delete;
+    int& depth_;
+  };
+
   std::string file_;
   int lineOffset_;
   int columnOffset_;
   size_t visited_ = 0;
+  int depth_ = 0;
 };
 }  // namespace
 
