@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     StackOptions options;
     if (trace)
       options.onStep = [](uint64_t step, const std::vector<std::vector<BodyPose>>&) {
-        std::fprintf(stderr, "step %llu\n", (unsigned long long)step);
+        std::fprintf(stderr, "step %llu\n", static_cast<unsigned long long>(step));
       };
     std::vector<double> seconds;
     StackResult last;
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         "\"extra_settle_steps\": %zu, \"settled\": %s, \"max_linear_speed\": %.5f, \"max_angular_speed\": %.5f, "
         "\"max_penetration_surface\": %.5f, \"max_penetration_assets\": %.5f, \"left_area\": %zu}\n",
         count, median, seconds.front(), seconds.back(), seconds.size(), 1000 * median / (4.0 * count),
-        (unsigned long long)last.steps, extra, settled ? "true" : "false", lin, ang, penSurface, penAssets, left);
+        static_cast<unsigned long long>(last.steps), extra, settled ? "true" : "false", lin, ang, penSurface, penAssets, left);
     std::fflush(stdout);
   }
 }

@@ -7,8 +7,8 @@ namespace sdg {
 
 std::string SourceLoc::str() const {
   if (file.empty()) return {};
-  if (line <= 0) return file;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+  if (line <= 0) return file.str();
+  return file.str() + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
 std::string Diagnostic::format() const {

@@ -56,7 +56,7 @@ void diagnostic(const Diagnostic& d) {
   if (gFormat == Format::Json) {
     nlohmann::ordered_json j;
     j["level"] = levelName(level);
-    j["file"] = d.loc.file;
+    j["file"] = d.loc.file.str();
     j["line"] = d.loc.line;
     j["column"] = d.loc.column;
     j["message"] = d.message;

@@ -39,7 +39,7 @@ std::string RawNode::describe() const {
 namespace {
 class Converter {
  public:
-  Converter(std::string file, int lineOffset, int columnOffset)
+  Converter(FileName file, int lineOffset, int columnOffset)
       : file_(std::move(file)), lineOffset_(lineOffset), columnOffset_(columnOffset) {}
 
   RawNode convert(const YAML::Node& node, const SourceLoc& fallback) {
@@ -63,6 +63,13 @@ class Converter {
       case YAML::NodeType::Undefined:
       case YAML::NodeType::Null: out.kind = RawNode::Kind::Null; break;
       case YAML::NodeType::Scalar:
+        // Each alias of a long string copies it: counting nodes alone would
+        // let a few KiB of YAML ask for gigabytes.
+        textBytes_ += node.Scalar().size();
+        if (textBytes_ > kMaxDocumentTextBytes)
+          throw SceneError(out.loc, "the document expands to more than " +
+                                        std::to_string(kMaxDocumentTextBytes >> 20) +
+                                        " MiB of text; YAML aliases (*name) that repeat long values are refused");
         out.kind = RawNode::Kind::Scalar;
         out.scalar = node.Scalar();
         out.quoted = node.Tag() == "!";
@@ -106,10 +113,11 @@ class Converter {
     int& depth_;
   };
 
-  std::string file_;
+  FileName file_;
   int lineOffset_;
   int columnOffset_;
   size_t visited_ = 0;
+  size_t textBytes_ = 0;
   int depth_ = 0;
 };
 }  // namespace

@@ -49,6 +49,7 @@ struct RawEntry {
 inline constexpr size_t kMaxSceneFileBytes = 64u << 20;   // 64 MiB
 inline constexpr size_t kMaxDocumentNodes = 2'000'000;    // after alias expansion
 inline constexpr int kMaxDocumentDepth = 1000;             // nesting levels, counted through aliases
+inline constexpr size_t kMaxDocumentTextBytes = kMaxSceneFileBytes;  // scalar text, after alias expansion
 
 // Parses YAML text. `file` names the source in locations; `lineOffset` and
 // `columnOffset` shift them (for snippets such as --set values). Syntax
