@@ -15,6 +15,11 @@ cp tests/data/fuzz_regressions/* "$build/corpus/scene/"
 printf '%s\n' 'render.resolution=[640,480]' '/World/Box.size=3' '/World/Box.xformOp:translate=[1,2,3]' \
   '/World/Box.exposedVar:locationRandomizer:interval=4' 'capture.frames=12' 'physics.require_settled=true' \
   '/World/Cam.orient=[0.7,0.7,0,0]' > "$build/corpus/set/seed1"
+# ASan's allocator keeps every size class at its peak and a 256 MB
+# quarantine, so inputs that each stay under ~250 MB (the alias limits) add
+# up past -rss_limit_mb in a few minutes; returning freed memory keeps the
+# limit a test of each input rather than of the run's history.
+export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}allocator_release_to_os_interval_ms=100:quarantine_size_mb=32
 status=0
 for harness in fuzz_scene_loader fuzz_overrides; do
   corpus=$build/corpus/scene
