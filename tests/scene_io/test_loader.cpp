@@ -120,7 +120,34 @@ TEST_CASE("loader: yaml nesting beyond the parser's depth guard is an error, not
 
 TEST_CASE("loader: an alias inside its own anchor is refused, not followed forever", "[scene_io][loader]") {
   CHECK_THAT(errorsOf("version: 1\nprims:\n  /World:\n    a: &loop [1, *loop]\n"),
-             Catch::Contains("nests more than 1000 levels deep, counting through aliases"));
+             Catch::Contains("4:18: error: an alias used inside its own anchor"));
+}
+
+TEST_CASE("loader: aliases cannot nest a document deeper than the limit", "[scene_io][loader]") {
+  // Each anchor nests 300 levels, within the parser's guard, around an alias
+  // of the one before: four of them are 1,200 levels.
+  auto nest = [](const std::string& inner) { return std::string(300, '[') + inner + std::string(300, ']'); };
+  std::string yaml = "version: 1\nprims: {}\na: &a " + nest("1") + "\nb: &b " + nest("*a") + "\nc: &c " +
+                     nest("*b") + "\nd: " + nest("*c") + "\n";
+  CHECK_THAT(errorsOf(yaml), Catch::Contains("t.yaml:6:") &&
+                                 Catch::Contains("nests more than 1000 levels deep, counting through aliases"));
+}
+
+TEST_CASE("loader: the copies nested anchors keep count against the node limit", "[scene_io][loader]") {
+  // 400 anchors, each around the next, around a list of 10,000 items: a
+  // 44 KB document whose anchor copies would hold 4 million nodes.
+  std::string yaml = "version: 1\nprims: {}\nx: ";
+  for (int i = 0; i < 400; ++i) yaml += "&a" + std::to_string(i) + " [";
+  for (int i = 0; i < 10000; ++i) yaml += "1,";
+  yaml += "1" + std::string(400, ']') + "\n";
+  CHECK_THAT(errorsOf(yaml), Catch::Contains("the document has more than 2000000 nodes"));
+}
+
+TEST_CASE("loader: a document of more than 2,000,000 plain nodes is refused while it is read", "[scene_io][loader]") {
+  std::string yaml = "version: 1\nprims: {}\nx: [";
+  for (int i = 0; i < 2'000'000; ++i) yaml += "1,";
+  yaml += "1]\n";
+  CHECK_THAT(errorsOf(yaml), Catch::Contains("t.yaml:3:") && Catch::Contains("the document has more than 2000000 nodes"));
 }
 
 TEST_CASE("loader: every input the fuzzer crashed on now loads or fails cleanly", "[scene_io][loader][fuzz]") {
