@@ -162,7 +162,6 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
           .string());
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  WritePool pool(threads, 2 * size_t(threads));
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
                                   ->options.get("semantic_types")
                                   .get<std::vector<std::string>>();
@@ -199,6 +198,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   // frames are alive at once; their buffers circulate.
   Recycler<FramePasses> spareFrames;
   Recycler<Renderer::CoverageMasks> spareMasks;
+  // Declared after everything its jobs refer to: when a write fails and the
+  // run unwinds, the pool's destructor joins the workers before those go.
+  WritePool pool(threads, 2 * size_t(threads));
   // Hands a collected product to the pool: annotators, COCO fragment,
   // thumbnail, encoding, durable writes, then its manifest line.
   auto submit = [&](const PendingProduct& p) {
