@@ -280,7 +280,7 @@ prims:
   static const AssetResolver assets({SDG_SOURCE_DIR "/scenes", SDG_SOURCE_DIR "/tests/data"});
   Renderer renderer(test::sharedContext(), assets, settings);
   FramePasses colourOnly;
-  renderer.render(full.list, 0, colourOnly, PassSelection{false, false, false});
+  renderer.render(full.list, 0, colourOnly, PassSelection::colourOnly());
   CHECK(colourOnly.rgba == full.frame.rgba);
   // Buffers a run does not read back are never allocated.
   CHECK((colourOnly.normals.empty() && colourOnly.distanceToCamera.empty() && colourOnly.distanceToImagePlane.empty() &&

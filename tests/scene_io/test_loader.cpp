@@ -151,7 +151,9 @@ TEST_CASE("loader: a document of more than 2,000,000 plain nodes is refused whil
 }
 
 TEST_CASE("loader: every input the fuzzer crashed on now loads or fails cleanly", "[scene_io][loader][fuzz]") {
-  // Each file is a crash make fuzz once found; the harness's own call is replayed.
+  // Each file is a crash make fuzz once found, kept byte for byte (comments
+  // in it are the fuzzer's mutated leftovers of seed scenes, not
+  // expectations); the harness's own call is replayed.
   const std::filesystem::path dir = SDG_SOURCE_DIR "/tests/data/fuzz_regressions";
   int replayed = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
