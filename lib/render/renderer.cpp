@@ -430,9 +430,13 @@ void Renderer::drawShadowMaps(const RenderList& list, const RenderCamera& camera
   }
   // One framebuffer, one clear, a viewport per light: llvmpipe flushes on
   // every framebuffer switch, so tiles of one atlas cost far less than maps.
+  // The clear covers the whole atlas, unused tiles too: llvmpipe clears a
+  // whole framebuffer by filling its tiles, but a scissored clear by drawing
+  // a quad through the depth pipeline (1.2 ms a frame for three tiles).
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, shadowFramebuffer_);
   const float one = 1.0f;
-  gl_.glEnable(GL_SCISSOR_TEST);  // clears only the tiles in use
+  gl_.glClearBufferfv(GL_DEPTH, 0, &one);
+  gl_.glEnable(GL_SCISSOR_TEST);  // each light draws only into its tile
   gl_.glEnable(GL_DEPTH_TEST);
   gl_.glDepthFunc(GL_LESS);
   gl_.glEnable(GL_POLYGON_OFFSET_FILL);
@@ -441,7 +445,6 @@ void Renderer::drawShadowMaps(const RenderList& list, const RenderCamera& camera
   for (size_t k = 0; k < shadowSlots_.size(); ++k) {
     gl_.glViewport(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
     gl_.glScissor(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
-    gl_.glClearBufferfv(GL_DEPTH, 0, &one);
     setMatrix(gl_, shadowLightViewProjection_, shadowSlots_[k].viewProjection);
     drawWholeMeshes(batches_, instanceBuffer_);
   }
