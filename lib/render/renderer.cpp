@@ -10,6 +10,7 @@
 #include "core/diagnostics.h"
 #include "render/camera_math.h"
 #include "render/shaders.h"
+#include "render/shadow_casters.h"
 #include "render/shadow_frusta.h"
 #include "stage/xform.h"
 
@@ -282,8 +283,11 @@ const Renderer::GpuMesh& Renderer::bindBatch(const InstanceBatch& batch, unsigne
   return m;
 }
 
-void Renderer::drawWholeMeshes(const InstanceBatches& batches, unsigned buffer) {
-  for (const InstanceBatch& batch : batches.byMesh()) {
+void Renderer::drawWholeMeshes(const InstanceBatches& batches, unsigned buffer, const std::vector<uint8_t>* skip) {
+  const std::vector<InstanceBatch>& byMesh = batches.byMesh();
+  for (size_t b = 0; b < byMesh.size(); ++b) {
+    if (skip && (*skip)[b]) continue;
+    const InstanceBatch& batch = byMesh[b];
     const GpuMesh& m = bindBatch(batch, buffer);
     GLsizei count = 0;
     for (const MeshPart& part : m.parts) count = std::max<GLsizei>(count, GLsizei(part.firstIndex + part.indexCount));
@@ -370,17 +374,45 @@ int Renderer::shadowMapSize() const {
 }
 
 Eigen::AlignedBox3d Renderer::sceneBounds(const RenderList& list) {
+  itemBounds_.resize(list.items.size());
   Eigen::AlignedBox3d box;
   for (size_t i = 0; i < list.items.size(); ++i) {
     const RenderItem& item = list.items[i];
     const Eigen::AlignedBox3f& b = meshBySlot_[meshSlots_[i]]->bounds;
-    for (int c = 0; c < 8; ++c) {
-      Vec3d corner = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
-      box.extend((item.worldFromLocal * corner.homogeneous()).head<3>());
-    }
+    Eigen::AlignedBox3d& world = itemBounds_[i];
+    world.setEmpty();
+    if (!b.isEmpty())
+      for (int c = 0; c < 8; ++c) {
+        Vec3d corner = b.corner(static_cast<Eigen::AlignedBox3f::CornerType>(c)).cast<double>();
+        world.extend((item.worldFromLocal * corner.homogeneous()).head<3>());
+      }
+    box.extend(world);
   }
   if (box.isEmpty()) box.extend(Vec3d::Zero());
   return box;
+}
+
+void Renderer::markShadowlessBatches(const RenderLight& light, const Eigen::AlignedBox3d& scene) {
+  // Each flat instance tested costs a pass over every item's bounds, so a
+  // frame tests a few (ground planes, backdrops) and draws the rest.
+  constexpr int kMaxFlatInstancesTested = 8;
+  const double tolerance = 1e-6 * std::max(1.0, scene.diagonal().norm());
+  const std::vector<InstanceBatch>& byMesh = batches_.byMesh();
+  const std::vector<InstanceRecord>& records = batches_.records();
+  skipInShadow_.assign(byMesh.size(), 0);
+  int budget = kMaxFlatInstancesTested;
+  for (size_t b = 0; b < byMesh.size(); ++b) {
+    const InstanceBatch& batch = byMesh[b];
+    const Eigen::AlignedBox3f& local = meshBySlot_[batch.meshSlot]->bounds;
+    if (int(batch.count) > budget || !flatSurface(local, records[batch.first].worldFromLocal)) continue;
+    bool skip = true;
+    for (uint32_t k = 0; k < batch.count && skip; ++k) {
+      --budget;
+      const std::optional<FlatSurface> surface = flatSurface(local, records[batch.first + k].worldFromLocal);
+      skip = surface && shadowsNothing(*surface, light, itemBounds_, tolerance);
+    }
+    skipInShadow_[b] = skip ? 1 : 0;
+  }
 }
 
 void Renderer::compileFor(const RenderList& list, size_t cameraIndex, const PassSelection& passes,
@@ -446,7 +478,8 @@ void Renderer::drawShadowMaps(const RenderList& list, const RenderCamera& camera
     gl_.glViewport(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
     gl_.glScissor(GLint(k % 2) * size, GLint(k / 2) * size, size, size);
     setMatrix(gl_, shadowLightViewProjection_, shadowSlots_[k].viewProjection);
-    drawWholeMeshes(batches_, instanceBuffer_);
+    markShadowlessBatches(list.lights[shadowSlots_[k].light], scene);
+    drawWholeMeshes(batches_, instanceBuffer_, &skipInShadow_);
   }
   gl_.glDisable(GL_POLYGON_OFFSET_FILL);
   gl_.glDisable(GL_SCISSOR_TEST);

@@ -107,10 +107,15 @@ class Renderer {
   // Binds the batch's mesh with its instance attributes at the batch's
   // records in `buffer`.
   const GpuMesh& bindBatch(const InstanceBatch& batch, unsigned buffer);
-  // Every index of a mesh's parts in one instanced draw (positions only).
-  void drawWholeMeshes(const InstanceBatches& batches, unsigned buffer);
+  // Every index of a mesh's parts in one instanced draw (positions only),
+  // for each batch of byMesh() but those `skip` marks.
+  void drawWholeMeshes(const InstanceBatches& batches, unsigned buffer, const std::vector<uint8_t>* skip = nullptr);
   const GpuTexture& texture(const std::string& path, const std::string& primPath);
+  // The world bounds of every item into itemBounds_; returns their union.
   Eigen::AlignedBox3d sceneBounds(const RenderList& list);
+  // Marks in skipInShadow_ the batches of byMesh() that `light`'s map can
+  // leave out (render/shadow_casters.h).
+  void markShadowlessBatches(const RenderLight& light, const Eigen::AlignedBox3d& scene);
   void drawShadowMaps(const RenderList& list, const RenderCamera& camera);
   int shadowMapSize() const;
   // Makes the scene program for this frame's lights and `textureMode` (0
@@ -186,6 +191,8 @@ class Renderer {
   unsigned whiteTexture_ = 0;
   unsigned shadowAtlas_ = 0;              // 2 x 2 tiles of shadowMapSize, made on first use
   std::vector<ShadowSlot> shadowSlots_;    // this frame's shadowed lights
+  std::vector<Eigen::AlignedBox3d> itemBounds_;  // this frame's, by item
+  std::vector<uint8_t> skipInShadow_;            // by batch of byMesh(), for one light
   std::unordered_map<std::string, std::unique_ptr<GpuMesh>> meshes_;
   std::unordered_map<std::string, GpuTexture> textures_;
   std::vector<uint32_t> colorSum_;

@@ -29,6 +29,18 @@ const std::string kFlatLitTopView = R"(  /Sky: {type: DomeLight, inputs:intensit
   /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}
 )";
 
+// A 100 x 100 render of a shadow scene and its red channel at a pixel: the
+// scenes' cameras see 10 units across, 10 pixels per unit.
+struct ShadowShot {
+  test::RenderedScene r;
+  int red(int x, int y) const { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); }
+};
+ShadowShot renderShadowScene(const std::string& yaml) {
+  RenderSettings settings;
+  settings.width = settings.height = 100;
+  return {test::renderYaml(yaml, settings)};
+}
+
 // Red minus blue at a pixel: positive on split.png's red half.
 int redness(const FramePasses& f, int x, int y) {
   size_t i = (size_t(y) * size_t(f.width) + size_t(x)) * 4;
@@ -197,9 +209,7 @@ prims:
 }
 
 TEST_CASE("render: a distant light's shadow falls where the light direction puts it", "[render][analytic][shadows]") {
-  RenderSettings settings;
-  settings.width = settings.height = 100;
-  auto r = test::renderYaml(R"(
+  auto shot = renderShadowScene(R"(
 version: 1
 prims:
   /Looks: {type: Scope}
@@ -208,33 +218,47 @@ prims:
   /Block: {type: Cube, size: 2, translate: [0, 0, 3], material: /Looks/Grey}
   /Sun: {type: DistantLight, inputs:intensity: 1000, rotateY: 30}
   /Cam: {type: Camera, projection: orthographic, horizontalAperture: 100, translate: [0, 0, 10], clippingRange: [0.1, 100]}
-)",
-                            settings);
+)");
   // The sun shines down -Z tilted 30 degrees toward -X: the block (x -1..1,
   // z 2..4) shadows the floor for x in [-3.31, -0.15]; 10 px per unit.
-  auto red = [&](int x, int y) { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); };
-  CHECK(red(25, 50) <= 2);   // floor at x = -2.5: in shadow, no ambient light
-  CHECK(red(85, 50) > 100);  // floor at x = +3.5: lit
-  CHECK(red(5, 50) > 100);   // floor at x = -4.5: beyond the shadow
+  CHECK(shot.red(25, 50) <= 2);   // floor at x = -2.5: in shadow, no ambient light
+  CHECK(shot.red(85, 50) > 100);  // floor at x = +3.5: lit
+  CHECK(shot.red(5, 50) > 100);   // floor at x = -4.5: beyond the shadow
 }
 
 TEST_CASE("render: a sphere light casts a shadow too", "[render][analytic][shadows]") {
-  RenderSettings settings;
-  settings.width = settings.height = 100;
-  auto r = test::renderYaml(R"(
+  auto shot = renderShadowScene(R"(
 version: 1
 prims:
   /Floor: {type: Plane, width: 20, length: 20}
   /Block: {type: Cube, size: 1, translate: [1.5, 0, 2.5]}
   /Lamp: {type: SphereLight, inputs:intensity: 100000, inputs:radius: 0.1, translate: [3, 0, 5]}
   /Cam: {type: Camera, projection: orthographic, horizontalAperture: 100, translate: [0, 0, 10], clippingRange: [0.1, 100]}
-)",
-                            settings);
+)");
   // The line from the lamp through the block's centre meets the floor at the
   // origin; x = 6 is as far from the lamp and unshadowed.
-  auto red = [&](int x, int y) { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); };
-  CHECK(red(50, 50) <= 2);
-  CHECK(red(95, 50) > 20);
+  CHECK(shot.red(50, 50) <= 2);
+  CHECK(shot.red(95, 50) > 20);
+}
+
+TEST_CASE("render: a flat card above the floor casts its shadow; the floor under everything casts none",
+          "[render][analytic][shadows]") {
+  // Shadow maps leave out flat items with nothing behind them (the floor
+  // here) but must keep a card with the floor behind it.
+  auto shot = renderShadowScene(R"(
+version: 1
+prims:
+  /Floor: {type: Plane, width: 20, length: 20}
+  /Card: {type: Plane, width: 2, length: 2, translate: [0, 0, 2]}
+  /Sun: {type: DistantLight, inputs:intensity: 1000, rotateY: 30}
+  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 100, translate: [0, 0, 10], clippingRange: [0.1, 100]}
+)");
+  // The sun shines down -Z tilted 30 degrees toward -X: the card (x -1..1 at
+  // z = 2) shadows the floor for x in [-2.15, -0.15]; 10 px per unit.
+  CHECK(shot.red(30, 50) <= 2);   // floor at x = -2: in the card's shadow
+  CHECK(shot.red(75, 50) > 100);  // floor at x = +2.5: lit
+  CHECK(shot.red(5, 50) > 100);   // floor at x = -4.5: lit, no acne from the missing floor
+  CHECK(shot.red(55, 50) > 100);  // the card itself at x = +0.5: lit
 }
 
 TEST_CASE("render: a dome light's lat-long texture shows behind the scene, +Y up", "[render][analytic][dome]") {

@@ -1,9 +1,11 @@
 // The CPU halves of the renderer's draw path: how items group into
-// instanced draws, and where shadow maps look. No GL context needed.
+// instanced draws, where shadow maps look and what they may leave out. No GL
+// context needed.
 #include <catch2/catch.hpp>
 
 #include "render/camera_math.h"
 #include "render/instance_batches.h"
+#include "render/shadow_casters.h"
 #include "render/shadow_frusta.h"
 
 using namespace sdg;
@@ -142,4 +144,73 @@ TEST_CASE("shadow frusta: every receiver and caster is inside the light's map", 
     const Matrix4d m = shadowViewProjection(lamp, receivers, scene);
     CHECK(insideNdc(clipToNdc(m, Vec3d(0.5, 0.2, 0))));
   }
+}
+
+namespace {
+
+// A 2 x 2 plane in local XY (no thickness along Z), placed by `world`.
+std::optional<FlatSurface> planeAt(const Eigen::Matrix4f& world) {
+  return flatSurface(Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, 0), Eigen::Vector3f(1, 1, 0)), world.data());
+}
+
+RenderLight sunFrom(const Vec3d& towardLight) {
+  RenderLight l;
+  l.kind = LightKind::Distant;
+  l.direction = -towardLight.normalized();
+  return l;
+}
+
+RenderLight lampAt(const Vec3d& position, LightKind kind = LightKind::Sphere) {
+  RenderLight l;
+  l.kind = kind;
+  l.position = position;
+  return l;
+}
+
+Eigen::AlignedBox3d box(const Vec3d& low, const Vec3d& high) { return Eigen::AlignedBox3d(low, high); }
+
+}  // namespace
+
+TEST_CASE("shadow casters: only a mesh without thickness is flat, its plane placed by the transform",
+          "[render][shadows]") {
+  CHECK_FALSE(flatSurface(Eigen::AlignedBox3f(Eigen::Vector3f(-1, -1, -1), Eigen::Vector3f(1, 1, 1)),
+                          Eigen::Matrix4f::Identity().eval().data()));
+  // Turned 90 degrees about X and lifted: the local +Z normal becomes -Y.
+  Eigen::Affine3f world = Eigen::Translation3f(0, 5, 2) * Eigen::AngleAxisf(float(M_PI / 2), Eigen::Vector3f::UnitX());
+  const std::optional<FlatSurface> s = planeAt(world.matrix());
+  REQUIRE(s);
+  CHECK(s->point.isApprox(Vec3d(0, 5, 2)));
+  CHECK(std::fabs(std::fabs(s->normal.y()) - 1.0) < 1e-6);
+  // Squashed to nothing by its transform: no plane.
+  Eigen::Matrix4f squashed = Eigen::Matrix4f::Identity();
+  squashed(0, 0) = 0;
+  CHECK_FALSE(planeAt(squashed));
+}
+
+TEST_CASE("shadow casters: a ground plane under everything shadows nothing, from above only", "[render][shadows]") {
+  const FlatSurface floor = *planeAt(Eigen::Matrix4f::Identity());
+  std::vector<Eigen::AlignedBox3d> items = {box({-1, -1, 0}, {1, 1, 0}),      // the floor itself
+                                            box({0, 0, 0}, {0.5, 0.5, 0.5}),   // a box resting on it
+                                            box({2, 2, 3}, {3, 3, 4})};        // one in the air
+  CHECK(shadowsNothing(floor, sunFrom({0.3, 0, 1}), items, 1e-6));
+  CHECK(shadowsNothing(floor, lampAt({0, 0, 5}), items, 1e-6));
+  // Lit from below, the floor stands between the light and everything.
+  CHECK_FALSE(shadowsNothing(floor, sunFrom({0, 0, -1}), items, 1e-6));
+  CHECK_FALSE(shadowsNothing(floor, lampAt({0, 0, -2}), items, 1e-6));
+  // A light in the plane itself, or a light without a shadow map.
+  CHECK_FALSE(shadowsNothing(floor, sunFrom({1, 0, 0}), items, 1e-6));
+  CHECK_FALSE(shadowsNothing(floor, lampAt({0, 0, 5}, LightKind::Rect), items, 1e-6));
+  // Something reaching below the floor by more than the tolerance.
+  items.push_back(box({4, 4, -0.01}, {5, 5, 1}));
+  CHECK_FALSE(shadowsNothing(floor, sunFrom({0, 0, 1}), items, 1e-6));
+  CHECK(shadowsNothing(floor, sunFrom({0, 0, 1}), items, 0.02));
+}
+
+TEST_CASE("shadow casters: a card above the ground shadows what lies under it", "[render][shadows]") {
+  Eigen::Matrix4f lifted = Eigen::Matrix4f::Identity();
+  lifted(2, 3) = 2;
+  const FlatSurface card = *planeAt(lifted);
+  const std::vector<Eigen::AlignedBox3d> items = {box({-10, -10, 0}, {10, 10, 0}), box({-1, -1, 2}, {1, 1, 2})};
+  CHECK_FALSE(shadowsNothing(card, sunFrom({0, 0, 1}), items, 1e-6));
+  CHECK_FALSE(shadowsNothing(card, lampAt({0, 0, 5}), items, 1e-6));
 }
