@@ -21,12 +21,18 @@ std::optional<FlatSurface> flatSurface(const Eigen::AlignedBox3f& localBounds, c
 
 bool shadowsNothing(const FlatSurface& surface, const RenderLight& light,
                     const std::vector<Eigen::AlignedBox3d>& itemBounds, double tolerance) {
-  // Turn the normal towards the light.
+  // Turn the normal towards the light; a light in the plane (a distant one
+  // grazing it, a lamp on it) lights both sides and decides nothing.
   double side;
-  if (light.kind == LightKind::Distant) side = -surface.normal.dot(light.direction.normalized());
-  else if (light.kind == LightKind::Sphere) side = surface.normal.dot(light.position - surface.point);
-  else return false;
-  if (!(std::fabs(side) > tolerance)) return false;
+  if (light.kind == LightKind::Distant) {
+    side = -surface.normal.dot(light.direction.normalized());  // a cosine
+    if (!(std::fabs(side) > 1e-9)) return false;
+  } else if (light.kind == LightKind::Sphere) {
+    side = surface.normal.dot(light.position - surface.point);  // a distance
+    if (!(std::fabs(side) > tolerance)) return false;
+  } else {
+    return false;
+  }
   const Vec3d n = side > 0 ? surface.normal : Vec3d(-surface.normal);
   const double offset = n.dot(surface.point);
   const Vec3d reach = n.cwiseAbs();
