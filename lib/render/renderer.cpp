@@ -404,7 +404,7 @@ void Renderer::markShadowlessBatches(const RenderLight& light, const Eigen::Alig
   for (size_t b = 0; b < byMesh.size(); ++b) {
     const InstanceBatch& batch = byMesh[b];
     const Eigen::AlignedBox3f& local = meshBySlot_[batch.meshSlot]->bounds;
-    if (int(batch.count) > budget || !flatSurface(local, records[batch.first].worldFromLocal)) continue;
+    if (int(batch.count) > budget || !flatAxis(local)) continue;
     bool skip = true;
     for (uint32_t k = 0; k < batch.count && skip; ++k) {
       --budget;

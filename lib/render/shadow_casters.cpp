@@ -4,18 +4,24 @@
 
 namespace sdg {
 
-std::optional<FlatSurface> flatSurface(const Eigen::AlignedBox3f& localBounds, const float worldFromLocal[16]) {
+std::optional<int> flatAxis(const Eigen::AlignedBox3f& localBounds) {
   if (localBounds.isEmpty()) return std::nullopt;
   const Eigen::Vector3f size = localBounds.sizes();
   int axis = 0;
   size.minCoeff(&axis);
   if (!(size[axis] <= 1e-7f * size.maxCoeff())) return std::nullopt;
+  return axis;
+}
+
+std::optional<FlatSurface> flatSurface(const Eigen::AlignedBox3f& localBounds, const float worldFromLocal[16]) {
+  const std::optional<int> axis = flatAxis(localBounds);
+  if (!axis) return std::nullopt;
   const Eigen::Matrix4d world = Eigen::Map<const Eigen::Matrix4f>(worldFromLocal).cast<double>();
   const Matrix3d linear = world.block<3, 3>(0, 0);
   if (std::fabs(linear.determinant()) < 1e-300) return std::nullopt;  // squashed flat: no plane to speak of
   FlatSurface s;
   s.point = (world * localBounds.center().cast<double>().homogeneous()).head<3>();
-  s.normal = (linear.inverse().transpose() * Vec3d::Unit(axis)).normalized();
+  s.normal = (linear.inverse().transpose() * Vec3d::Unit(*axis)).normalized();
   return s;
 }
 

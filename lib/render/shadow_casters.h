@@ -20,6 +20,10 @@ struct FlatSurface {
   Vec3d normal = Vec3d::UnitZ();
 };
 
+// The local axis along which a mesh's bounds have no thickness; nothing for
+// a mesh with volume.
+std::optional<int> flatAxis(const Eigen::AlignedBox3f& localBounds);
+
 // The plane of a mesh whose local bounds have no thickness along some axis,
 // placed by `worldFromLocal` (column-major 4 x 4, as an instance record has
 // it); nothing for a mesh with volume.
