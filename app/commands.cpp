@@ -29,6 +29,15 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("--asset-root", args.assetRoots, "Also search this folder for assets (after the scene's asset_roots)")
       ->type_name("DIR")
       ->allow_extra_args(false);
+  cmd.add_option("--isaac-assets", args.isaacAssets,
+                 "A local copy of Isaac Sim's asset pack (the folder holding Isaac/): /Isaac/... paths, such as the "
+                 "defaults of textureRandomizer and volumeStackRandomizer, resolve below it. Default: "
+                 "$SDGBEHAVE_ISAAC_ASSETS, then the scene's isaac_assets:")
+      ->type_name("DIR");
+}
+
+SceneRequest sceneRequest(const SceneArgs& args) {
+  return SceneRequest{args.scene, args.overrides, args.plugins, args.assetRoots, args.isaacAssets};
 }
 
 void addImageArgs(CLI::App& cmd, ImageArgs& args) {
@@ -73,7 +82,7 @@ RenderOverrides renderOverrides(const ImageArgs& args) {
 namespace {
 
 LoadedScene load(const SceneArgs& args) {
-  return loadSceneForRun(SceneRequest{args.scene, args.overrides, args.plugins, args.assetRoots});
+  return loadSceneForRun(sceneRequest(args));
 }
 
 size_t behaviorCount(const Scene& scene) {
@@ -130,16 +139,25 @@ void addSchema(CLI::App& app, int& exitCode) {
 void addDescribe(CLI::App& app, int& exitCode) {
   auto name = std::make_shared<std::string>();
   auto plugins = std::make_shared<std::vector<std::string>>();
+  auto format = std::make_shared<std::string>("text");
   CLI::App* cmd = app.add_subcommand("describe", "List the behaviors, or one behavior's exposed variables "
                                                  "(type, default, documentation)");
   cmd->add_option("name", *name, "A behavior name, e.g. locationRandomizer")->type_name("NAME");
   cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB")->allow_extra_args(false);
-  cmd->callback([name, plugins, &exitCode] {
+  cmd->add_option("--format", *format,
+                  "text for people; json for tools and editors: every behavior with its variables' name, "
+                  "attribute, type, default, doc and bounds")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
+  cmd->footer("Examples:\n  sdgbehave describe\n  sdgbehave describe locationRandomizer\n"
+              "  sdgbehave describe --format json > behaviors.json");
+  cmd->callback([name, plugins, format, &exitCode] {
     BehaviorRegistry registry = registryWithPlugins(*plugins);
+    const bool json = *format == "json";
     if (name->empty()) {
-      std::fputs(describeBehaviors(registry).c_str(), stdout);
+      std::fputs((json ? describeBehaviorsJson(registry) : describeBehaviors(registry)).c_str(), stdout);
     } else {
-      std::string text = describeBehavior(registry, *name);
+      std::string text = json ? describeBehaviorsJson(registry, *name) : describeBehavior(registry, *name);
       if (text.empty()) {
         std::vector<std::string> names = registry.catalog().names();
         throw SceneError(SourceLoc{}, "unknown behavior " + text::quote(*name) + "; known behaviors: " +

@@ -21,7 +21,10 @@ struct SceneArgs {
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
   std::vector<std::string> assetRoots;
+  std::string isaacAssets;
 };
+// What the library needs to load the scene the arguments name.
+SceneRequest sceneRequest(const SceneArgs& args);
 
 // "sdgbehave 0.1.0 (git describe)"
 std::string versionText();
@@ -29,7 +32,8 @@ std::string versionText();
 // "640x480" -> (640, 480); anything else is a usage error (exit 2).
 std::pair<int, int> parseResolution(const std::string& text);
 
-// SCENE, --set, --plugin and --asset-root, shared by every scene command.
+// SCENE, --set, --plugin, --asset-root and --isaac-assets, shared by every
+// scene command.
 void addSceneArgs(CLI::App& cmd, SceneArgs& args);
 
 // --resolution, --subframes, --backend and --gpu, shared by run and render.

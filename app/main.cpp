@@ -50,6 +50,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
 
+  // Global options are accepted after the subcommand too (`sdgbehave run
+  // scene.yaml --quiet`): subcommands created from here on inherit this and
+  // pass options they do not know up to the app.
+  app.fallthrough();
+
   int exitCode = cli::kExitOk;
   cli::addValidate(app, exitCode);
   cli::addInspect(app, exitCode);

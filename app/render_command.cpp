@@ -32,8 +32,7 @@ void addRender(CLI::App& app, int& exitCode) {
     options.camera = args->camera;
     options.outputPath = args->out;
     options.render = renderOverrides(args->image);
-    LoadedScene loaded = loadSceneForRun(
-        SceneRequest{args->scene.scene, args->scene.overrides, args->scene.plugins, args->scene.assetRoots});
+    LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
     QuickRenderResult result = renderOnePicture(loaded, options);
     log::info("wrote " + args->out + " (" + std::to_string(result.width) + " x " + std::to_string(result.height) +
               ", camera " + result.camera + ", " + result.renderer + ")");

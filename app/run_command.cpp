@@ -100,8 +100,7 @@ void addRun(CLI::App& app, int& exitCode) {
       "  sdgbehave run scenes/warehouse.yaml --frames 600 --out out/big --resume   # after a crash");
   cmd->callback([args, &exitCode] {
     const auto loadStart = std::chrono::steady_clock::now();
-    LoadedScene loaded = loadSceneForRun(SceneRequest{args->scene.scene, args->scene.overrides,
-                                                      args->scene.plugins, args->scene.assetRoots});
+    LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;

@@ -14,6 +14,12 @@ AttributeSpec primPathVariable(std::string name, std::string doc) {
   return spec;
 }
 
+AttributeSpec fileVariable(std::string name, Value fallback, FileKind kind, std::string doc) {
+  AttributeSpec spec = variable(std::move(name), std::move(fallback), std::move(doc));
+  spec.files = kind;
+  return spec;
+}
+
 AttributeSpec includeChildrenVariable() {
   return variable("includeChildren", Value::makeBool(true),
                   "Also act on every descendant of the right kind (pre-order, the prim itself included).");

@@ -9,6 +9,8 @@ namespace sdg::behaviors {
 
 AttributeSpec variable(std::string name, Value fallback, std::string doc);
 AttributeSpec primPathVariable(std::string name, std::string doc);
+// An asset, asset[] or comma-separated string variable naming files of `kind`.
+AttributeSpec fileVariable(std::string name, Value fallback, FileKind kind, std::string doc);
 // The variables every timeline randomizer shares.
 AttributeSpec includeChildrenVariable();
 AttributeSpec intervalVariable();

@@ -31,6 +31,7 @@
 #include <optional>
 
 #include "assets/asset_resolver.h"
+#include "assets/file_check.h"
 #include "behavior/interval_behavior.h"
 #include "behaviors/builtin_behaviors.h"
 #include "behaviors/scene_utils.h"
@@ -101,27 +102,24 @@ class TextureRandomizer final : public IntervalBehavior {
     entries_.clear();
   }
 
-  // textures:assets, then the CSV entries; each must resolve to an existing
-  // file, but the material keeps the path as written so outputs do not
+  // textures:assets, then the CSV entries; each must resolve to a readable
+  // file (validate checked them already; a --set or a behavior may not
+  // have), but the material keeps the path as written so outputs do not
   // depend on the working directory (the renderer resolves it again).
   std::vector<std::string> resolveTextures() const {
-    std::vector<std::string> files = var<std::vector<std::string>>("textures:assets");
-    for (std::string& entry : text::splitCsv(var<std::string>("textures:csv"))) files.push_back(std::move(entry));
-    std::vector<std::string> resolved;
-    const AssetResolver* resolver = context().assets;
-    for (const std::string& file : files) {
-      if (file.find("://") != std::string::npos) {
-        throw SceneError(locOf("textures:csv"), primPath() + ": textureRandomizer: " + text::quote(file) +
-                                                    " is a URL; sdgbehave reads local files only");
-      }
-      std::optional<std::string> path = resolver ? resolver->resolve(file) : std::nullopt;
-      if (!path)
-        throw SceneError(locOf("textures:csv"),
-                         primPath() + ": textureRandomizer: texture " + text::quote(file) + " not found; " +
-                             (resolver ? resolver->describeSearch(file) : std::string("no asset roots")));
-      resolved.push_back(file);
+    static const AssetResolver kNoRoots;
+    const AssetResolver& resolver = context().assets ? *context().assets : kNoRoots;
+    std::vector<std::string> files;
+    for (std::string_view name : {"textures:assets", "textures:csv"}) {
+      const Attribute* attr = prim().findAttribute(attributeName(name));
+      if (!attr) continue;
+      for (std::string& file : fileEntriesOf(*attr, *spec().findVariable(name), resolver, primPath()))
+        if (std::optional<std::string> problem = fileProblem(file, FileKind::Image, resolver))
+          throw SceneError(locOf(name), primPath() + ": textureRandomizer: " + *problem);
+        else
+          files.push_back(std::move(file));
     }
-    return resolved;
+    return files;
   }
 
   SourceLoc locOf(std::string_view variable) const {
@@ -150,10 +148,11 @@ BehaviorSpec textureRandomizerSpec() {
   spec.variables = {
       includeChildrenVariable(),
       intervalVariable(),
-      variable("textures:assets", Value::makeAssetArray({}), "Texture files."),
-      variable("textures:csv",
+      fileVariable("textures:assets", Value::makeAssetArray({}), FileKind::Image, "Texture files."),
+      fileVariable("textures:csv",
                Value::makeString("/Isaac/Materials/Textures/Patterns/nv_bamboo_desktop.jpg,"
                                  "/Isaac/Materials/Textures/Patterns/nv_brick_grey.jpg"),
+               FileKind::Image,
                "Comma-separated texture files, used after textures:assets."),
       probability,
       variable("textureScaleRange", Value::makeFloat2(0.1f, 1.0f), "(min, max) of the uniform texture scale."),

@@ -38,6 +38,7 @@
 #include <optional>
 
 #include "assets/asset_resolver.h"
+#include "assets/file_check.h"
 #include "behavior/behavior.h"
 #include "behaviors/builtin_behaviors.h"
 #include "behaviors/scene_utils.h"
@@ -353,25 +354,24 @@ class VolumeStackRandomizer final : public Behavior {
     return root;
   }
 
+  // assets:assets, then the CSV entries, each a readable mesh file.
   std::vector<AssetEntry> assetEntries() const {
-    std::vector<std::string> files = var<std::vector<std::string>>("assets:assets");
-    for (std::string& entry : text::splitCsv(var<std::string>("assets:csv"))) files.push_back(std::move(entry));
+    static const AssetResolver kNoRoots;
+    const AssetResolver& resolver = context().assets ? *context().assets : kNoRoots;
     std::vector<AssetEntry> entries;
-    const AssetResolver* resolver = context().assets;
-    for (const std::string& file : files) {
-      AssetEntry e = parseEntry(file);
-      SourceLoc loc = prim().loc();
-      if (const Attribute* a = prim().findAttribute(attributeName("assets:csv")); a && a->loc.known()) loc = a->loc;
-      if (e.url.find("://") != std::string::npos)
-        throw SceneError(loc, primPath() + ": volumeStackRandomizer: " + text::quote(e.url) +
-                                  " is a URL; sdgbehave reads local files only");
-      if (!resolver || !resolver->resolve(e.url))
-        throw SceneError(loc, primPath() + ": volumeStackRandomizer: asset " + text::quote(e.url) + " not found; " +
-                                  (resolver ? resolver->describeSearch(e.url) : std::string("no asset roots")));
-      if (e.label.empty())
-        throw SceneError(loc, primPath() + ": volumeStackRandomizer: asset " + text::quote(file) +
-                                  " has an empty label after '#'");
-      entries.push_back(std::move(e));
+    for (std::string_view name : {"assets:assets", "assets:csv"}) {
+      const Attribute* attr = prim().findAttribute(attributeName(name));
+      if (!attr) continue;
+      const SourceLoc loc = attr->loc.known() ? attr->loc : prim().loc();
+      for (const std::string& file : fileEntriesOf(*attr, *spec().findVariable(name), resolver, primPath())) {
+        if (std::optional<std::string> problem = fileProblem(file, FileKind::Mesh, resolver))
+          throw SceneError(loc, primPath() + ": volumeStackRandomizer: " + *problem);
+        AssetEntry e = parseEntry(file);
+        if (e.label.empty())
+          throw SceneError(loc, primPath() + ": volumeStackRandomizer: asset " + text::quote(file) +
+                                    " has an empty label after '#'");
+        entries.push_back(std::move(e));
+      }
     }
     return entries;
   }
@@ -401,11 +401,12 @@ BehaviorSpec volumeStackRandomizerSpec() {
       includeChildrenVariable(),
       input,
       variable("event:output", Value::makeString(kEventOut), "Event it replies on."),
-      variable("assets:assets", Value::makeAssetArray({}),
+      fileVariable("assets:assets", Value::makeAssetArray({}), FileKind::Mesh,
                "Mesh files to drop; 'file#label' gives the semantic class (default: the file name)."),
-      variable("assets:csv",
+      fileVariable("assets:csv",
                Value::makeString("/Isaac/Environments/Simple_Warehouse/Props/SM_CardBoxC_01.usd,"
                                  "/Isaac/Environments/Simple_Warehouse/Props/SM_CardBoxD_01.usd"),
+               FileKind::Mesh,
                "Comma-separated mesh files, used after assets:assets."),
       variable("assets:numRange", Value::makeInt2(4, 8), "(min, max) assets per surface, both included."),
       dropHeight,

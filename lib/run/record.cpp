@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/diagnostics.h"
-#include "scene_io/value_json.h"
+#include "stage/value_json.h"
 #include "stage/stage_diff.h"
 
 namespace sdg {

@@ -1,8 +1,11 @@
 #include "run/scene_setup.h"
 
+#include <cstdlib>
 #include <filesystem>
 
+#include "assets/file_check.h"
 #include "behaviors/builtin_behaviors.h"
+#include "core/text.h"
 #include "core/file_io.h"
 #include "scene_io/scene_loader.h"
 #include "scene_io/scene_writer.h"
@@ -61,11 +64,41 @@ void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path) {
   saved.assetRoots.clear();
   for (const std::string& root : loaded.assets.roots())
     saved.assetRoots.push_back(std::filesystem::absolute(root).lexically_normal().string());
+  if (!loaded.assets.isaacRoot().empty())
+    saved.isaacAssets = std::filesystem::absolute(loaded.assets.isaacRoot()).lexically_normal().string();
   for (std::string& plugin : saved.plugins)
     if (std::filesystem::path(plugin).is_relative())
       plugin = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / plugin).lexically_normal().string();
   writeFileAtomic(path, writeSceneYaml(saved, loaded.registry.catalog()));
 }
+
+namespace {
+
+// --isaac-assets, else SDGBEHAVE_ISAAC_ASSETS, else the scene's isaac_assets
+// (relative to the scene): the machine's setting beats the shared file's.
+// A root that is not a folder is an error where it was given.
+std::string isaacRootFor(const SceneRequest& request, const Scene& scene) {
+  namespace fs = std::filesystem;
+  std::string root;
+  SourceLoc where;
+  if (!request.isaacAssets.empty()) {
+    root = request.isaacAssets;
+    where = SourceLoc{"--isaac-assets", 0, 0};
+  } else if (const char* env = std::getenv("SDGBEHAVE_ISAAC_ASSETS"); env && *env) {
+    root = env;
+    where = SourceLoc{"SDGBEHAVE_ISAAC_ASSETS", 0, 0};
+  } else if (!scene.isaacAssets.empty()) {
+    fs::path p(scene.isaacAssets);
+    root = (p.is_relative() ? fs::path(scene.sourceDir) / p : p).lexically_normal().string();
+    where = scene.isaacAssetsLoc;
+  }
+  std::error_code ec;
+  if (!root.empty() && !fs::is_directory(root, ec))
+    throw SceneError(where, "Isaac Sim asset root " + text::quote(root) + " is not a folder");
+  return root;
+}
+
+}  // namespace
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {
   SceneDocument doc = readSceneDocument(request.scenePath);
@@ -73,13 +106,21 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   // The scene's own plugins load before its prims are read: their behaviors
   // must be known to check the prims. Paths are relative to the scene file.
   std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
-  for (const std::string& plugin : declaredPlugins(doc)) {
-    std::filesystem::path p(plugin);
+  for (const DeclaredPlugin& plugin : declaredPlugins(doc)) {
+    std::filesystem::path p(plugin.path);
     if (p.is_relative()) p = sceneDir / p;
-    registry.loadPlugin(p.string(), SourceLoc{request.scenePath, 0, 0});
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+      throw SceneError(plugin.loc, "plugins: plugin library " + text::quote(plugin.path) + " not found; searched: " +
+                                       p.lexically_normal().string());
+    registry.loadPlugin(p.string(), plugin.loc);
   }
   Scene scene = buildScene(doc, registry.catalog(), request.overrides);
-  AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots);
+  AssetResolver assets =
+      makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
+  Diagnostics diag;
+  checkStageFiles(scene.stage, registry.catalog(), assets, diag);
+  diag.throwIfErrors();
   return LoadedScene{std::move(registry), std::move(scene), std::move(assets)};
 }
 

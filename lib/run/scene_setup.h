@@ -21,6 +21,7 @@ struct SceneRequest {
   std::vector<std::string> overrides;   // --set
   std::vector<std::string> plugins;     // --plugin
   std::vector<std::string> assetRoots;  // --asset-root
+  std::string isaacAssets;              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
 };
 
 struct LoadedScene {
@@ -56,7 +57,9 @@ BehaviorContext behaviorContextFor(LoadedScene& loaded, int64_t seed, RunBehavio
 // its events (they have run), so reloading it renders the same stacks.
 void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 
-// Throws SceneError for invalid input (exit 2).
+// Loads and checks the scene, including that every file it names (meshes,
+// textures, behaviors' file lists, plugins) exists and can be read. Throws
+// SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
 // The registry of built-ins plus the given plugin libraries.
 BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins);

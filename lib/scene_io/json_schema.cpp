@@ -7,7 +7,7 @@
 
 #include "core/text.h"
 #include "scene_io/prim_reader.h"
-#include "scene_io/value_json.h"
+#include "stage/value_json.h"
 #include "scene_io/scene.h"
 #include "stage/xform.h"
 
@@ -201,6 +201,9 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
   props["plugins"] = {{"description", "Behavior plugin libraries (.so) to load before the prims are read."},
                       {"type", "array"},
                       {"items", {{"type", "string"}}}};
+  props["isaac_assets"] = {{"description", "A local copy of Isaac Sim's asset pack (the folder holding Isaac/), relative "
+                                           "to the scene file; /Isaac/... paths resolve below it."},
+                           {"type", "string"}};
   props["render"] = optionsObject(renderOptionSpecs(), "Rendering settings.");
   props["physics"] = optionsObject(physicsOptionSpecs(), "Rigid-body settings of the stacking simulation.");
   props["capture"] = optionsObject(captureOptionSpecs(), "What to capture.");

@@ -70,11 +70,15 @@ struct Scene {
   std::vector<EventStep> events;
   std::vector<std::string> assetRoots;
   std::vector<std::string> plugins;
+  // A local copy of Isaac Sim's asset pack, relative to the scene file
+  // ("" = none); --isaac-assets and SDGBEHAVE_ISAAC_ASSETS take precedence.
+  std::string isaacAssets;
+  SourceLoc isaacAssetsLoc;
 
   Scene();
   bool operator==(const Scene& o) const {
     return stage == o.stage && render == o.render && capture == o.capture && physics == o.physics && writers == o.writers &&
-           events == o.events && assetRoots == o.assetRoots && plugins == o.plugins;
+           events == o.events && assetRoots == o.assetRoots && plugins == o.plugins && isaacAssets == o.isaacAssets;
   }
 };
 

@@ -138,12 +138,12 @@ SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& na
   return SceneDocument{name, parseYaml(yaml, name)};
 }
 
-std::vector<std::string> declaredPlugins(const SceneDocument& doc) {
-  std::vector<std::string> plugins;
+std::vector<DeclaredPlugin> declaredPlugins(const SceneDocument& doc) {
+  std::vector<DeclaredPlugin> plugins;
   if (!doc.root.isMap()) return plugins;
   if (const RawNode* node = doc.root.find("plugins"); node && node->isSequence())
     for (const RawNode& item : node->items)
-      if (item.isScalar()) plugins.push_back(item.scalar);
+      if (item.isScalar()) plugins.push_back({item.scalar, item.loc});
   return plugins;
 }
 
@@ -173,6 +173,12 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
   if (const RawNode* n = top.get("stage")) readStageSection(*n, scene.stage, diag);
   if (const RawNode* n = top.get("asset_roots")) scene.assetRoots = readStringList(*n, "asset_roots", diag);
   if (const RawNode* n = top.get("plugins")) scene.plugins = readStringList(*n, "plugins", diag);
+  if (const RawNode* n = top.get("isaac_assets")) {
+    if (auto s = readString(*n, "isaac_assets", diag)) {
+      scene.isaacAssets = *s;
+      scene.isaacAssetsLoc = n->loc;
+    }
+  }
   if (const RawNode* n = top.get("render")) {
     MapReader section(*n, "render", diag);
     readOptions(section, renderOptionSpecs(), scene.render, diag);

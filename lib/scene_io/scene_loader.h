@@ -25,7 +25,11 @@ SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& na
 
 // The `plugins:` the document declares, read leniently (the full check
 // happens in buildScene): plugins must load before behaviors are checked.
-std::vector<std::string> declaredPlugins(const SceneDocument& doc);
+struct DeclaredPlugin {
+  std::string path;  // as written, relative to the scene file
+  SourceLoc loc;
+};
+std::vector<DeclaredPlugin> declaredPlugins(const SceneDocument& doc);
 
 // Builds the scene; throws SceneError listing every problem.
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog,

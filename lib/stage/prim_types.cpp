@@ -16,6 +16,12 @@ AttributeSpec tokenAttr(std::string name, std::string fallback, std::vector<std:
   return spec;
 }
 
+AttributeSpec fileAttr(std::string name, FileKind kind, std::string doc) {
+  AttributeSpec spec = attr(std::move(name), Value::makeAsset(""), std::move(doc));
+  spec.files = kind;
+  return spec;
+}
+
 AttributeSpec positive(AttributeSpec spec) {
   spec.minimum = 0.0;
   return spec;
@@ -74,7 +80,7 @@ std::vector<PrimTypeInfo> buildTable() {
                "A grouping prim with no transform.", {}});
   t.push_back({PrimType::Mesh, "Mesh", true, true, false,
                "Geometry loaded from an asset file (OBJ, glTF/GLB, FBX, PLY, STL, DAE).",
-               concat(gprim(), {attr("asset", Value::makeAsset(""), "Path of the mesh file."),
+               concat(gprim(), {fileAttr("asset", FileKind::Mesh, "Path of the mesh file."),
                                 attr("submesh", Value::makeString(""),
                                      "Name of one mesh inside the file; empty means all of them.")})});
   t.push_back({PrimType::Cube, "Cube", true, true, false, "An axis-aligned cube centred at the origin.",
@@ -118,7 +124,7 @@ std::vector<PrimTypeInfo> buildTable() {
   t.push_back({PrimType::RectLight, "RectLight", true, false, true, "A rectangle emitting toward -Z.",
                lightWith({positive(attr("inputs:width", Value::makeFloat(1.0f), "Width along X.")),
                           positive(attr("inputs:height", Value::makeFloat(1.0f), "Height along Y.")),
-                          attr("inputs:texture:file", Value::makeAsset(""), "Optional emission texture.")})});
+                          fileAttr("inputs:texture:file", FileKind::Image, "Optional emission texture.")})});
   t.push_back({PrimType::DiskLight, "DiskLight", true, false, true, "A disk emitting toward -Z.",
                lightWith({positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius of the disk."))})});
   t.push_back({PrimType::CylinderLight, "CylinderLight", true, false, true, "A cylinder along X emitting outward.",
@@ -126,14 +132,14 @@ std::vector<PrimTypeInfo> buildTable() {
                           positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius."))})});
   t.push_back({PrimType::DomeLight, "DomeLight", true, false, true,
                "Light from every direction: a uniform colour or a lat-long texture.",
-               lightWith({attr("inputs:texture:file", Value::makeAsset(""), "Lat-long environment texture (PNG)."),
+               lightWith({fileAttr("inputs:texture:file", FileKind::Image, "Lat-long environment texture (PNG)."),
                           tokenAttr("inputs:texture:format", "automatic",
                                     {"automatic", "latlong", "mirroredBall", "angular", "cubeMapVerticalCross"},
                                     "Layout of the texture.")})});
   t.push_back({PrimType::Material, "Material", false, false, false,
                "An OmniPBR-like surface material, bound to prims with `material:`.",
                {attr("inputs:diffuse_color_constant", Value::makeColor3f(Vec3f(0.2f, 0.2f, 0.2f)), "Base colour when no texture is set."),
-                attr("inputs:diffuse_texture", Value::makeAsset(""), "Base colour texture (PNG)."),
+                fileAttr("inputs:diffuse_texture", FileKind::Image, "Base colour texture (PNG)."),
                 positive(attr("inputs:texture_scale", Value::makeFloat2(1.0f, 1.0f), "UV scale of the texture.")),
                 attr("inputs:texture_rotate", Value::makeFloat(0.0f), "Rotation of the texture (degrees)."),
                 attr("inputs:project_uvw", Value::makeBool(false), "Project the texture in world space (triplanar) instead of using UVs."),

@@ -78,6 +78,11 @@ class Value {
 // Specification of one attribute (a prim type's schema attribute, an exposed
 // variable of a behavior, or a settings option). One table of these drives
 // loading, defaults, `describe`, the YAML writer and the JSON Schema.
+// What kind of file an attribute names: Asset and AssetArray values name
+// files; a String with a kind other than None is a comma-separated list of
+// them. Lets `validate` check every file before a run needs it.
+enum class FileKind : uint8_t { None, Mesh, Image, Any };
+
 struct AttributeSpec {
   std::string name;
   ValueType type = ValueType::Bool;
@@ -87,6 +92,7 @@ struct AttributeSpec {
   std::vector<std::string> allowedTokens;  // for Token: the closed set of values
   std::optional<double> minimum;          // inclusive bound for scalars/vectors
   bool primPath = false;                  // a String naming a prim: "" or an existing path
+  FileKind files = FileKind::None;        // for Asset/AssetArray: None means Any
 };
 
 // A spec whose type is the fallback's type.

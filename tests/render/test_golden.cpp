@@ -28,7 +28,7 @@ double toleranceScale() {
 }
 
 void compareWithGolden(const std::string& scene, const std::string& golden) {
-  LoadedScene loaded = loadSceneForRun(SceneRequest{scene, {}, {}, {}});
+  LoadedScene loaded = loadSceneForRun(SceneRequest{scene, {}, {}, {}, {}});
   RenderList list = buildRenderList(loaded.scene.stage);
   RenderSettings settings;
   Vec2i size = loaded.scene.render.get("resolution").get<Vec2i>();
@@ -62,13 +62,18 @@ void compareWithGolden(const std::string& scene, const std::string& golden) {
   }
   double mean = sum / double(frame.rgba.size());
   bool ok = worst <= kMaxChannelDelta * toleranceScale() && mean <= kMeanChannelDelta * toleranceScale();
+  // Failure artifacts go under the build folder, never the source tree or
+  // whatever folder the test binary happened to be started in.
+  const std::filesystem::path failures = std::filesystem::path(SDG_BINARY_DIR) / "golden_failures";
+  const std::string stem = (failures / std::filesystem::path(golden).stem()).string();
   if (!ok) {
-    std::string stem = std::filesystem::path(golden).stem().string();
+    std::filesystem::create_directories(failures);
     writeFileAtomic(stem + ".actual.png", png);
     writeFileAtomic(stem + ".diff.png", encodePng(diff, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8));
   }
   INFO("max delta " << worst << " at pixel (" << worstAt % size_t(frame.width) << ", " << worstAt / size_t(frame.width)
-                    << "), mean delta " << mean << "; actual and diff written to the test's working folder");
+                    << "), mean delta " << mean << "; actual and diff written to " << stem << ".actual.png and "
+                    << stem << ".diff.png");
   CHECK(ok);
 }
 }  // namespace

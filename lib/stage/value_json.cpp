@@ -1,4 +1,4 @@
-#include "scene_io/value_json.h"
+#include "stage/value_json.h"
 
 #include <cstdlib>
 
