@@ -26,6 +26,10 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("--plugin", args.plugins, "Load a behavior plugin library (.so) before reading the scene")
       ->type_name("LIB")
       ->allow_extra_args(false);
+  cmd.add_option("--script", args.scripts,
+                 "Load a behavior script (.py) before reading the scene, as the scene's scripts: do; repeatable")
+      ->type_name("FILE.py")
+      ->allow_extra_args(false);
   cmd.add_option("--asset-root", args.assetRoots, "Also search this folder for assets (after the scene's asset_roots)")
       ->type_name("DIR")
       ->allow_extra_args(false);
@@ -37,7 +41,12 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
 }
 
 SceneRequest sceneRequest(const SceneArgs& args) {
-  return SceneRequest{args.scene, args.overrides, args.plugins, args.assetRoots, args.isaacAssets};
+  return SceneRequest{.scenePath = args.scene,
+                      .overrides = args.overrides,
+                      .plugins = args.plugins,
+                      .scripts = args.scripts,
+                      .assetRoots = args.assetRoots,
+                      .isaacAssets = args.isaacAssets};
 }
 
 void addImageArgs(CLI::App& cmd, ImageArgs& args) {
@@ -120,11 +129,13 @@ void addInspect(CLI::App& app, int& exitCode) {
 void addSchema(CLI::App& app, int& exitCode) {
   auto out = std::make_shared<std::string>();
   auto plugins = std::make_shared<std::vector<std::string>>();
+  auto scripts = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("schema", "Print the JSON Schema of the scene format (for editors and CI checks)");
   cmd->add_option("-o,--out", *out, "Write to this file instead of standard output")->type_name("FILE");
   cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB")->allow_extra_args(false);
-  cmd->callback([out, plugins, &exitCode] {
-    std::string schema = sceneJsonSchema(registryWithPlugins(*plugins).catalog());
+  cmd->add_option("--script", *scripts, "Include the behaviors of this script (.py)")->type_name("FILE.py")->allow_extra_args(false);
+  cmd->callback([out, plugins, scripts, &exitCode] {
+    std::string schema = sceneJsonSchema(registryWithPlugins(*plugins, *scripts).catalog());
     if (out->empty()) {
       std::fputs(schema.c_str(), stdout);
     } else {
@@ -140,10 +151,12 @@ void addDescribe(CLI::App& app, int& exitCode) {
   auto name = std::make_shared<std::string>();
   auto plugins = std::make_shared<std::vector<std::string>>();
   auto format = std::make_shared<std::string>("text");
+  auto scripts = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("describe", "List the behaviors, or one behavior's exposed variables "
                                                  "(type, default, documentation)");
   cmd->add_option("name", *name, "A behavior name, e.g. locationRandomizer")->type_name("NAME");
   cmd->add_option("--plugin", *plugins, "Include the behaviors of this plugin library")->type_name("LIB")->allow_extra_args(false);
+  cmd->add_option("--script", *scripts, "Include the behaviors of this script (.py)")->type_name("FILE.py")->allow_extra_args(false);
   cmd->add_option("--format", *format,
                   "text for people; json for tools and editors: every behavior with its variables' name, "
                   "attribute, type, default, doc and bounds")
@@ -151,8 +164,8 @@ void addDescribe(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->footer("Examples:\n  sdgbehave describe\n  sdgbehave describe locationRandomizer\n"
               "  sdgbehave describe --format json > behaviors.json");
-  cmd->callback([name, plugins, format, &exitCode] {
-    BehaviorRegistry registry = registryWithPlugins(*plugins);
+  cmd->callback([name, plugins, scripts, format, &exitCode] {
+    BehaviorRegistry registry = registryWithPlugins(*plugins, *scripts);
     const bool json = *format == "json";
     if (name->empty()) {
       std::fputs((json ? describeBehaviorsJson(registry) : describeBehaviors(registry)).c_str(), stdout);

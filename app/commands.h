@@ -20,6 +20,7 @@ struct SceneArgs {
   std::string scene;
   std::vector<std::string> overrides;
   std::vector<std::string> plugins;
+  std::vector<std::string> scripts;
   std::vector<std::string> assetRoots;
   std::string isaacAssets;
 };

@@ -128,7 +128,7 @@ int measureAll(int argc, char** argv) {
   if (argc > 1) {
     // A scene file (e.g. one written by `run --save-stage`): its first camera,
     // its stage as written (behaviors and events do not run here).
-    LoadedScene loaded = loadSceneForRun(SceneRequest{argv[1], {}, {}, {}, {}});
+    LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = argv[1]});
     Renderer renderer(*context, loaded.assets, settings);
     const std::string name = "render 512x512: " + std::filesystem::path(argv[1]).filename().string();
     // A GPU needs more frames per run than llvmpipe for a steady figure.

@@ -5,6 +5,7 @@
 
 #include "assets/file_check.h"
 #include "behaviors/builtin_behaviors.h"
+#include "scripting/script_loader.h"
 #include "core/text.h"
 #include "core/file_io.h"
 #include "scene_io/scene_loader.h"
@@ -12,10 +13,12 @@
 
 namespace sdg {
 
-BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins) {
+BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins, const std::vector<std::string>& scripts) {
   BehaviorRegistry registry = builtinRegistry();
   for (size_t i = 0; i < plugins.size(); ++i)
     registry.loadPlugin(plugins[i], SourceLoc{"--plugin[" + std::to_string(i + 1) + "]", 0, 0});
+  for (size_t i = 0; i < scripts.size(); ++i)
+    scripting::loadScript(registry, scripts[i], SourceLoc{"--script[" + std::to_string(i + 1) + "]", 0, 0});
   return registry;
 }
 
@@ -66,9 +69,10 @@ void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path) {
     saved.assetRoots.push_back(std::filesystem::absolute(root).lexically_normal().string());
   if (!loaded.assets.isaacRoot().empty())
     saved.isaacAssets = std::filesystem::absolute(loaded.assets.isaacRoot()).lexically_normal().string();
-  for (std::string& plugin : saved.plugins)
-    if (std::filesystem::path(plugin).is_relative())
-      plugin = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / plugin).lexically_normal().string();
+  for (std::vector<std::string>* files : {&saved.plugins, &saved.scripts})
+    for (std::string& file : *files)
+      if (std::filesystem::path(file).is_relative())
+        file = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / file).lexically_normal().string();
   writeFileAtomic(path, writeSceneYaml(saved, loaded.registry.catalog()));
 }
 
@@ -102,11 +106,21 @@ std::string isaacRootFor(const SceneRequest& request, const Scene& scene) {
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {
   SceneDocument doc = readSceneDocument(request.scenePath);
-  BehaviorRegistry registry = registryWithPlugins(request.plugins);
-  // The scene's own plugins load before its prims are read: their behaviors
-  // must be known to check the prims. Paths are relative to the scene file.
+  BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
+  // The scene's own plugins and scripts load before its prims are read:
+  // their behaviors must be known to check the prims. Paths are relative to
+  // the scene file.
   std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
-  for (const DeclaredPlugin& plugin : declaredPlugins(doc)) {
+  for (const DeclaredFile& script : declaredFiles(doc, "scripts")) {
+    std::filesystem::path p(script.path);
+    if (p.is_relative()) p = sceneDir / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+      throw SceneError(script.loc, "scripts: behavior script " + text::quote(script.path) + " not found; searched: " +
+                                       p.lexically_normal().string());
+    scripting::loadScript(registry, p.lexically_normal().string(), script.loc);
+  }
+  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins")) {
     std::filesystem::path p(plugin.path);
     if (p.is_relative()) p = sceneDir / p;
     std::error_code ec;

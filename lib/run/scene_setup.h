@@ -17,11 +17,12 @@
 namespace sdg {
 
 struct SceneRequest {
-  std::string scenePath;
-  std::vector<std::string> overrides;   // --set
-  std::vector<std::string> plugins;     // --plugin
-  std::vector<std::string> assetRoots;  // --asset-root
-  std::string isaacAssets;              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
+  std::string scenePath = {};
+  std::vector<std::string> overrides = {};   // --set
+  std::vector<std::string> plugins = {};     // --plugin
+  std::vector<std::string> scripts = {};     // --script
+  std::vector<std::string> assetRoots = {};  // --asset-root
+  std::string isaacAssets = {};              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
 };
 
 struct LoadedScene {
@@ -61,7 +62,9 @@ void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 // textures, behaviors' file lists, plugins) exists and can be read. Throws
 // SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
-// The registry of built-ins plus the given plugin libraries.
-BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins);
+// The registry of built-ins plus the given plugin libraries and behavior
+// scripts (--plugin / --script; problems located at the flag).
+BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins,
+                                     const std::vector<std::string>& scripts = {});
 
 }  // namespace sdg

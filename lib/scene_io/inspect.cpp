@@ -55,6 +55,7 @@ std::string inspectScene(const Scene& scene) {
       << text::formatDouble(meta.metersPerUnit) << ", upAxis " << meta.upAxis << "\n";
   if (!scene.assetRoots.empty()) out << "asset_roots: " << text::join(scene.assetRoots, ", ") << "\n";
   if (!scene.plugins.empty()) out << "plugins: " << text::join(scene.plugins, ", ") << "\n";
+  if (!scene.scripts.empty()) out << "scripts: " << text::join(scene.scripts, ", ") << "\n";
   if (!scene.isaacAssets.empty()) out << "isaac_assets: " << scene.isaacAssets << "\n";
   out << "render: " << options(scene.render) << "\n";
   out << "physics: " << options(scene.physics) << "\n";

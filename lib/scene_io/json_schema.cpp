@@ -201,6 +201,10 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
   props["plugins"] = {{"description", "Behavior plugin libraries (.so) to load before the prims are read."},
                       {"type", "array"},
                       {"items", {{"type", "string"}}}};
+  props["scripts"] = {{"description", "Behavior scripts (Python files), relative to the scene file; loading the scene "
+                                      "runs their top-level code."},
+                      {"type", "array"},
+                      {"items", {{"type", "string"}}}};
   props["isaac_assets"] = {{"description", "A local copy of Isaac Sim's asset pack (the folder holding Isaac/), relative "
                                            "to the scene file; /Isaac/... paths resolve below it."},
                            {"type", "string"}};

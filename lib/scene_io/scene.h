@@ -70,6 +70,7 @@ struct Scene {
   std::vector<EventStep> events;
   std::vector<std::string> assetRoots;
   std::vector<std::string> plugins;
+  std::vector<std::string> scripts;  // behavior scripts (.py), relative to the scene file
   // A local copy of Isaac Sim's asset pack, relative to the scene file
   // ("" = none); --isaac-assets and SDGBEHAVE_ISAAC_ASSETS take precedence.
   std::string isaacAssets;
@@ -78,7 +79,7 @@ struct Scene {
   Scene();
   bool operator==(const Scene& o) const {
     return stage == o.stage && render == o.render && capture == o.capture && physics == o.physics && writers == o.writers &&
-           events == o.events && assetRoots == o.assetRoots && plugins == o.plugins && isaacAssets == o.isaacAssets;
+           events == o.events && assetRoots == o.assetRoots && plugins == o.plugins && scripts == o.scripts && isaacAssets == o.isaacAssets;
   }
 };
 

@@ -138,13 +138,13 @@ SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& na
   return SceneDocument{name, parseYaml(yaml, name)};
 }
 
-std::vector<DeclaredPlugin> declaredPlugins(const SceneDocument& doc) {
-  std::vector<DeclaredPlugin> plugins;
-  if (!doc.root.isMap()) return plugins;
-  if (const RawNode* node = doc.root.find("plugins"); node && node->isSequence())
+std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_view key) {
+  std::vector<DeclaredFile> files;
+  if (!doc.root.isMap()) return files;
+  if (const RawNode* node = doc.root.find(key); node && node->isSequence())
     for (const RawNode& item : node->items)
-      if (item.isScalar()) plugins.push_back({item.scalar, item.loc});
-  return plugins;
+      if (item.isScalar()) files.push_back({item.scalar, item.loc});
+  return files;
 }
 
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::span<const std::string> overrides) {
@@ -173,6 +173,7 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
   if (const RawNode* n = top.get("stage")) readStageSection(*n, scene.stage, diag);
   if (const RawNode* n = top.get("asset_roots")) scene.assetRoots = readStringList(*n, "asset_roots", diag);
   if (const RawNode* n = top.get("plugins")) scene.plugins = readStringList(*n, "plugins", diag);
+  if (const RawNode* n = top.get("scripts")) scene.scripts = readStringList(*n, "scripts", diag);
   if (const RawNode* n = top.get("isaac_assets")) {
     if (auto s = readString(*n, "isaac_assets", diag)) {
       scene.isaacAssets = *s;

@@ -23,13 +23,14 @@ struct SceneDocument {
 SceneDocument readSceneDocument(const std::string& path);
 SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& name);
 
-// The `plugins:` the document declares, read leniently (the full check
+// The `plugins:` or `scripts:` the document declares, read leniently (the full check
 // happens in buildScene): plugins must load before behaviors are checked.
-struct DeclaredPlugin {
+struct DeclaredFile {
   std::string path;  // as written, relative to the scene file
   SourceLoc loc;
 };
-std::vector<DeclaredPlugin> declaredPlugins(const SceneDocument& doc);
+// `key` is "plugins" or "scripts".
+std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_view key);
 
 // Builds the scene; throws SceneError listing every problem.
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog,

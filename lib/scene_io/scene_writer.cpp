@@ -207,6 +207,7 @@ std::string writeSceneYaml(const Scene& scene, const BehaviorCatalog& catalog, c
   emitOptions(out, "stage", stageOptionSpecs(), stageOptions);
   emitStringList(out, "asset_roots", scene.assetRoots);
   emitStringList(out, "plugins", scene.plugins);
+  emitStringList(out, "scripts", scene.scripts);
   if (!scene.isaacAssets.empty()) out << YAML::Key << "isaac_assets" << YAML::Value << scene.isaacAssets;
   emitOptions(out, "render", renderOptionSpecs(), scene.render);
   emitOptions(out, "physics", physicsOptionSpecs(), scene.physics);

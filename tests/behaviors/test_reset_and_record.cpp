@@ -27,7 +27,7 @@ std::string readFile(const std::string& path) {
 }
 
 std::string recordOf(const std::string& scene, int64_t seed) {
-  LoadedScene loaded = loadSceneForRun(SceneRequest{scene, {}, {}, {}, {}});
+  LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = scene});
   std::string path = (std::filesystem::temp_directory_path() / ("sdg_record_" + std::to_string(seed) + ".jsonl")).string();
   runTimeline(loaded, TimelineRunOptions{12, seed, path, ""});
   std::string text = readFile(path);
@@ -39,7 +39,7 @@ std::string recordOf(const std::string& scene, int64_t seed) {
 TEST_CASE("reset: after stop every example scene's stage equals the stage before play", "[behaviors][reset]") {
   for (const std::string& scene : exampleScenes()) {
     CAPTURE(scene);
-    LoadedScene loaded = loadSceneForRun(SceneRequest{scene, {}, {}, {}, {}});
+    LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = scene});
     Stage original = loaded.scene.stage;
     TimelineRunResult result = runTimeline(loaded, TimelineRunOptions{12, 5, "", ""});
     CHECK(result.stageRestored);

@@ -28,7 +28,7 @@ double toleranceScale() {
 }
 
 void compareWithGolden(const std::string& scene, const std::string& golden) {
-  LoadedScene loaded = loadSceneForRun(SceneRequest{scene, {}, {}, {}, {}});
+  LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = scene});
   RenderList list = buildRenderList(loaded.scene.stage);
   RenderSettings settings;
   Vec2i size = loaded.scene.render.get("resolution").get<Vec2i>();

@@ -1,0 +1,77 @@
+#include "scripting/python_host.h"
+
+#include <pybind11/embed.h>
+
+#include "core/diagnostics.h"
+
+namespace py = pybind11;
+
+// sdgbehave.py, embedded at build time (see lib/CMakeLists.txt).
+extern const char kSdgbehavePySource[];
+// The native module `_sdgbehave` (script_api.cpp). Registered here by name:
+// pybind11's static self-registration lives in an object file nothing else
+// references, which the linker may leave out of the binary.
+extern "C" PyObject* pybind11_init_impl__sdgbehave();
+
+namespace sdg::scripting {
+namespace {
+bool gStarted = false;
+}
+
+bool PythonHost::started() { return gStarted; }
+
+PythonHost& PythonHost::instance() {
+  // Never destroyed: the interpreter outlives every object that refers to it.
+  static PythonHost* host = new PythonHost();
+  return *host;
+}
+
+PythonHost::PythonHost() {
+  if (PyImport_AppendInittab("_sdgbehave", &pybind11_init_impl__sdgbehave) != 0)
+    throw std::runtime_error("cannot register the _sdgbehave module");
+  PyConfig config;
+  PyConfig_InitIsolatedConfig(&config);
+  config.use_hash_seed = 1;
+  config.hash_seed = 0;
+  config.buffered_stdio = 0;
+  config.install_signal_handlers = 0;  // Ctrl-C stays sdgbehave's (and the OS's)
+  config.parse_argv = 0;
+  py::initialize_interpreter(&config, 0, nullptr, /*add_program_dir_to_path=*/false);
+  gStarted = true;
+
+  py::module_ sys = py::module_::import("sys");
+  sys.attr("stdout") = sys.attr("stderr");
+  sys.attr("dont_write_bytecode") = true;  // never write __pycache__ into a user's script folder
+
+  // The pure-Python half of the API, compiled under its own name so that
+  // tracebacks through it read "sdgbehave.py".
+  py::module_ types = py::module_::import("types");
+  api_ = types.attr("ModuleType")("sdgbehave");
+  api_.attr("__file__") = "sdgbehave.py";
+  sys.attr("modules")["sdgbehave"] = api_;
+  py::module_ builtins = py::module_::import("builtins");
+  py::object code =
+      builtins.attr("compile")(py::str(static_cast<const char*>(kSdgbehavePySource)), "sdgbehave.py", "exec");
+  builtins.attr("exec")(code, api_.attr("__dict__"));
+  scriptFiles_ = py::set();
+}
+
+void PythonHost::addScriptFile(const std::string& absolutePath) { scriptFiles_.attr("add")(py::str(absolutePath)); }
+
+PythonHost::ErrorInfo PythonHost::describe(py::error_already_set& error) {
+  py::tuple where = api_.attr("_error_location")(error.value(), scriptFiles_);
+  ErrorInfo info;
+  std::string file = where[0].cast<std::string>();
+  if (!file.empty()) info.loc = SourceLoc{file, where[1].cast<int>(), where[2].cast<int>()};
+  info.text = where[3].cast<std::string>();
+  return info;
+}
+
+void PythonHost::seedGlobalRandom(uint64_t seed) { api_.attr("_seed_global_random")(seed); }
+
+void throwScriptRunError(py::error_already_set& error, const std::string& where) {
+  PythonHost::ErrorInfo info = PythonHost::instance().describe(error);
+  throw RunError((info.loc.known() ? info.loc.str() + ": " : std::string()) + where + " raised:\n" + info.text);
+}
+
+}  // namespace sdg::scripting

@@ -1,0 +1,476 @@
+// The native half of the `sdgbehave` Python module (`_sdgbehave`): Prim,
+// Stage and Rng handles over the running stage. Every write goes through the
+// behavior's journal first, so sdgbehave can undo it; transforms are written
+// into the prim's existing xform ops exactly as the built-in behaviors write
+// them (stage/xform_edit.h), so a script can reproduce a built-in bit for bit.
+#include <pybind11/embed.h>
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include "behaviors/look_at_math.h"
+#include "behaviors/scene_utils.h"
+#include "core/log.h"
+#include "core/text.h"
+#include "scripting/python_host.h"
+#include "scripting/script_context.h"
+#include "scripting/value_convert.h"
+#include "stage/path.h"
+#include "stage/prim_types.h"
+#include "stage/xform_edit.h"
+
+namespace py = pybind11;
+
+namespace sdg::scripting {
+
+Stage& ScriptContext::liveStage() const {
+  if (!stage) throw std::runtime_error(primPath + ": the behavior has been destroyed; its handles no longer work");
+  return *stage;
+}
+
+Rng& ScriptContext::randomStream() {
+  if (!rngReady) {
+    int32_t fixedSeed = -1;
+    if (const AttributeSpec* seed = spec->findVariable("seed"); seed && seed->type == ValueType::Int)
+      if (const Prim* p = liveStage().find(primPath))
+        if (const Value* v = p->value(exposedAttributeName(spec->name, "seed"))) fixedSeed = v->get<int32_t>();
+    rng = makeBehaviorRng(runSeed, primPath, rngStream, iteration, fixedSeed);
+    rngReady = true;
+  }
+  return rng;
+}
+
+namespace {
+
+using ContextPtr = std::shared_ptr<ScriptContext>;
+
+// A prim by path: looked up on every call, so a handle never dangles.
+struct PrimHandle {
+  ContextPtr ctx;
+  std::string path;
+
+  Prim& prim() const {
+    Prim* p = ctx->liveStage().find(path);
+    if (!p) throw py::value_error("prim " + path + " no longer exists");
+    return *p;
+  }
+  std::string what(const std::string& attribute) const { return path + "." + attribute; }
+};
+
+struct StageHandle {
+  ContextPtr ctx;
+};
+
+py::object handleOrNone(const ContextPtr& ctx, const Prim* p) {
+  if (!p || p->isPseudoRoot()) return py::none();
+  return py::cast(PrimHandle{ctx, p->path()});
+}
+
+// The type a write to `name` must have: the authored attribute's, else the
+// schema's, else `declared` (creating a custom attribute).
+std::pair<ValueType, const AttributeSpec*> targetType(const Prim& prim, const std::string& name,
+                                                      const std::optional<std::string>& declared,
+                                                      const std::string& what) {
+  const AttributeSpec* schema = findSchemaAttribute(prim.type(), name);
+  if (const Attribute* a = prim.findAttribute(name)) return {a->value.type(), schema};
+  if (schema) return {schema->type, schema};
+  if (!declared)
+    throw py::value_error(what + ": the prim has no attribute '" + name +
+                          "'; pass type= (a USD type name such as 'double' or 'color3f') to create a custom one");
+  std::optional<ValueType> type = valueTypeFromName(*declared);
+  if (!type) throw py::value_error(what + ": unknown type '" + *declared + "'");
+  return {*type, nullptr};
+}
+
+void checkAgainstSpec(const AttributeSpec& spec, const Value& v, const std::string& what) {
+  if (!spec.allowedTokens.empty()) {
+    const std::string& token = v.get<std::string>();
+    if (std::find(spec.allowedTokens.begin(), spec.allowedTokens.end(), token) == spec.allowedTokens.end())
+      throw py::value_error(what + ": expected one of " + text::join(spec.allowedTokens, ", ") + ", found '" + token +
+                            "'");
+  }
+  if (spec.minimum) {
+    py::object o = toPython(v);
+    auto check = [&](double x) {
+      if (x < *spec.minimum)
+        throw py::value_error(what + ": must be at least " + text::formatDouble(*spec.minimum) + ", found " +
+                              text::formatDouble(x));
+    };
+    if (py::isinstance<py::tuple>(o))
+      for (py::handle x : o) check(x.cast<double>());
+    else if (py::isinstance<py::float_>(o) || py::isinstance<py::int_>(o))
+      check(o.cast<double>());
+  }
+}
+
+void setAttribute(PrimHandle& h, const std::string& name, py::handle value, std::optional<std::string> type) {
+  Prim& prim = h.prim();
+  if (parseXformOpName(name))
+    throw py::value_error(h.what(name) + ": xform ops are written with set_location / set_rotation / set_scale");
+  auto [valueType, schema] = targetType(prim, name, type, h.what(name));
+  Value v = fromPython(value, valueType, h.what(name));
+  if (schema) checkAgainstSpec(*schema, v, h.what(name));
+  ScriptContext& ctx = *h.ctx;
+  if (!ctx.created(prim)) ctx.journal().beforeAttributeWrite(prim, name);
+  const Attribute* existing = prim.findAttribute(name);
+  const bool custom = existing ? existing->custom : schema == nullptr;
+  prim.setAttribute(name, std::move(v), custom);
+}
+
+XformOp& locationOp(PrimHandle& h) {
+  Prim& prim = h.prim();
+  if (!prim.typeInfo().xformable) throw py::value_error(h.path + " is a " + std::string(prim.typeInfo().name) + ", which has no transform");
+  if (!h.ctx->created(prim)) h.ctx->journal().beforeXformWrite(prim);
+  std::optional<size_t> index = findLocationOp(prim);
+  if (!index) index = insertTranslateOp(prim);
+  return prim.xformOps()[*index];
+}
+
+XformOp& rotationOp(PrimHandle& h) {
+  Prim& prim = h.prim();
+  if (!prim.typeInfo().xformable) throw py::value_error(h.path + " is a " + std::string(prim.typeInfo().name) + ", which has no transform");
+  if (!h.ctx->created(prim)) h.ctx->journal().beforeXformWrite(prim);
+  std::optional<size_t> index = findRotationOp(prim);
+  if (!index) index = insertOrientOp(prim);
+  return prim.xformOps()[*index];
+}
+
+Matrix4d parentWorld(const Stage& stage, const Prim& prim) {
+  return prim.parent()->isPseudoRoot() ? Matrix4d::Identity() : stage.worldMatrix(*prim.parent());
+}
+
+py::tuple matrix4ToPython(const Matrix4d& m) {
+  py::list rows;
+  for (int r = 0; r < 4; ++r) rows.append(py::make_tuple(m(r, 0), m(r, 1), m(r, 2), m(r, 3)));
+  return py::tuple(rows);
+}
+
+PrimHandle definePrim(StageHandle& s, const std::string& path, const std::string& typeName) {
+  ScriptContext& ctx = *s.ctx;
+  Stage& stage = ctx.liveStage();
+  const std::string scope = std::string(kBehaviorsScope) + "/" + ctx.ns();
+  if (!path.starts_with(scope + "/"))
+    throw py::value_error("define_prim: " + ctx.ns() + " creates prims under " + scope + "/, not at " + path);
+  if (std::string why = path::whyInvalid(path); !why.empty()) throw py::value_error("define_prim: " + path + ": " + why);
+  if (stage.find(path)) throw py::value_error("define_prim: " + path + " already exists (see next_free_path)");
+  std::optional<PrimType> type = primTypeFromName(typeName);
+  if (!type) {
+    std::vector<std::string> names;
+    for (const PrimTypeInfo& info : allPrimTypes()) names.emplace_back(info.name);
+    throw py::value_error("define_prim: unknown prim type '" + typeName + "'" + text::didYouMean(typeName, names));
+  }
+  // Missing ancestors become scopes; each is a prim this behavior created.
+  std::vector<std::string> missing;
+  for (std::string parent(path::parent(path)); parent.size() > 1 && !stage.find(parent);
+       parent = std::string(path::parent(parent)))
+    missing.push_back(parent);
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it)
+    ctx.journal().created(stage.definePrim(*it, PrimType::Scope));
+  Prim& prim = stage.definePrim(path, *type);
+  ctx.journal().created(prim);
+  return PrimHandle{s.ctx, path};
+}
+
+void removePrim(StageHandle& s, const std::string& path) {
+  ScriptContext& ctx = *s.ctx;
+  Stage& stage = ctx.liveStage();
+  Prim* prim = stage.find(path);
+  if (!prim) throw py::value_error("remove_prim: " + path + " does not exist");
+  if (!ctx.created(*prim)) throw py::value_error("remove_prim: " + path + " was not created by " + ctx.ns());
+  stage.removePrim(path);
+}
+
+std::vector<PrimHandle> traverse(StageHandle& s, py::object root) {
+  Stage& stage = s.ctx->liveStage();
+  Prim* start = &stage.pseudoRoot();
+  if (!root.is_none()) start = &(root.cast<PrimHandle&>().prim());
+  std::vector<PrimHandle> out;
+  for (Prim* p : stage.subtree(*start))
+    if (!p->isPseudoRoot()) out.push_back(PrimHandle{s.ctx, p->path()});
+  return out;
+}
+
+py::dict payloadToPython(const Payload& payload) {
+  py::dict d;
+  for (const auto& [key, value] : payload.entries())
+    std::visit([&](const auto& v) { d[py::str(key)] = py::cast(v); }, value);
+  return d;
+}
+
+Payload payloadFromPython(const py::dict& d, const std::string& what) {
+  Payload payload;
+  for (auto [key, value] : d) {
+    if (!py::isinstance<py::str>(key)) throw py::type_error(what + ": payload keys are strings");
+    std::string k = key.cast<std::string>();
+    if (py::isinstance<py::bool_>(value)) payload.set(k, value.cast<bool>());
+    else if (py::isinstance<py::str>(value)) payload.set(k, value.cast<std::string>());
+    else if (PyNumber_Check(value.ptr())) payload.set(k, value.cast<double>());
+    else throw py::type_error(what + ": payload value '" + k + "' must be a str, number or bool, found " +
+                              std::string(py::str(py::type::handle_of(value).attr("__name__"))));
+  }
+  return payload;
+}
+
+}  // namespace
+
+PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
+  m.doc() = "The native half of sdgbehave's script API; import sdgbehave instead.";
+
+  m.def("log", [](const std::string& level, const std::string& message) {
+    if (level == "debug") log::debug(message);
+    else if (level == "warning") log::warn(message);
+    else if (level == "error") log::error(message);
+    else log::info(message);
+  });
+
+  m.def("look_at_rotation",
+        [](py::handle eye, py::handle target, py::handle up) -> py::object {
+          std::optional<Matrix3d> r = lookAtRotation(vec3FromPython(eye, "look_at_rotation eye"),
+                                                     vec3FromPython(target, "look_at_rotation target"),
+                                                     vec3FromPython(up, "look_at_rotation up"));
+          return r ? py::object(matrix3ToPython(*r)) : py::object(py::none());
+        },
+        py::arg("eye"), py::arg("target"), py::arg("up") = py::make_tuple(0.0, 0.0, 1.0),
+        "The world rotation (3x3, rows) that aims a prim's -Z from eye at target with +Y toward up; None when "
+        "eye == target.");
+
+  py::class_<Rng>(m, "Rng", "A portable random stream (PCG32): the same draws on every machine.")
+      .def("random", &Rng::uniform01, "A float in [0, 1).")
+      .def("uniform", &Rng::uniform, py::arg("low") = 0.0, py::arg("high") = 1.0, "low + (high - low) * random().")
+      .def("integers",
+           [](Rng& r, int64_t low, int64_t high) {
+             if (high <= low) throw py::value_error("integers: high must exceed low");
+             return r.integers(low, high);
+           },
+           py::arg("low"), py::arg("high"), "An int in [low, high), unbiased.")
+      .def("normal",
+           [](Rng& r, double mean, double stddev) {
+             // Marsaglia's polar method: uniform draws and sqrt/log only.
+             double u, v, s;
+             do {
+               u = 2.0 * r.uniform01() - 1.0;
+               v = 2.0 * r.uniform01() - 1.0;
+               s = u * u + v * v;
+             } while (s >= 1.0 || s == 0.0);
+             return mean + stddev * u * std::sqrt(-2.0 * std::log(s) / s);
+           },
+           py::arg("mean") = 0.0, py::arg("stddev") = 1.0, "A normally distributed float.")
+      .def("bernoulli", &Rng::bernoulli, py::arg("p"), "True with probability p.")
+      .def("choice",
+           [](Rng& r, const py::sequence& items) {
+             if (items.size() == 0) throw py::value_error("choice: the sequence is empty");
+             return items[r.index(items.size())];
+           },
+           py::arg("items"), "One element of a non-empty sequence.")
+      .def("shuffle",
+           [](Rng& r, py::list& items) {
+             // Fisher-Yates from the end, one integers() draw per position.
+             for (size_t i = items.size(); i > 1; --i) {
+               size_t j = r.index(i);
+               py::object a = items[i - 1], b = items[j];
+               items[i - 1] = b;
+               items[j] = a;
+             }
+           },
+           py::arg("items"), "Shuffles a list in place.");
+
+  py::class_<PrimHandle>(m, "Prim", "A prim of the stage, by path.")
+      .def_property_readonly("path", [](const PrimHandle& h) { return h.path; })
+      .def_property_readonly("name", [](const PrimHandle& h) { return std::string(h.prim().name()); })
+      .def_property_readonly("type_name", [](const PrimHandle& h) { return std::string(h.prim().typeInfo().name); })
+      .def_property_readonly("is_valid", [](const PrimHandle& h) { return h.ctx->stage && h.ctx->stage->find(h.path); })
+      .def_property_readonly("is_xformable", [](const PrimHandle& h) { return h.prim().typeInfo().xformable; })
+      .def_property_readonly("is_geometry", [](const PrimHandle& h) { return h.prim().typeInfo().gprim; })
+      .def_property_readonly("is_light", [](const PrimHandle& h) { return h.prim().typeInfo().light; })
+      .def_property_readonly("is_camera", [](const PrimHandle& h) { return h.prim().type() == PrimType::Camera; })
+      .def_property_readonly("parent", [](const PrimHandle& h) { return handleOrNone(h.ctx, h.prim().parent()); })
+      .def_property_readonly("children",
+                             [](const PrimHandle& h) {
+                               std::vector<PrimHandle> out;
+                               for (const Prim* c : h.prim().children()) out.push_back(PrimHandle{h.ctx, c->path()});
+                               return out;
+                             })
+      .def("get_attribute",
+           [](const PrimHandle& h, const std::string& name) -> py::object {
+             const Value* v = h.prim().value(name);
+             return v ? toPython(*v) : py::object(py::none());
+           },
+           py::arg("name"), "The attribute's value (authored, else the schema's fallback), or None.")
+      .def("has_attribute", [](const PrimHandle& h, const std::string& name) { return h.prim().value(name) != nullptr; },
+           py::arg("name"))
+      .def("attribute_names",
+           [](const PrimHandle& h) {
+             std::vector<std::string> names;
+             for (const auto& [name, a] : h.prim().attributes()) names.push_back(name);
+             return names;
+           },
+           "Names of the authored attributes, sorted.")
+      .def("set_attribute", &setAttribute, py::arg("name"), py::arg("value"), py::arg("type") = py::none(),
+           "Writes an attribute, checked against its type; type= creates a custom attribute.")
+      .def_property_readonly("xform_ops",
+                             [](const PrimHandle& h) {
+                               py::list ops;
+                               for (const XformOp& op : h.prim().xformOps())
+                                 ops.append(py::make_tuple(op.attributeName(), toPython(op.value)));
+                               return ops;
+                             })
+      .def("get_location", [](const PrimHandle& h) {
+             const Prim& p = h.prim();
+             std::optional<size_t> i = findLocationOp(p);
+             return vec3ToPython(i ? opLocation(p.xformOps()[*i]) : Vec3d::Zero());
+           }, "The translation in the parent's frame (first translate or transform op).")
+      .def("set_location",
+           [](PrimHandle& h, py::handle v) { setOpLocation(locationOp(h), vec3FromPython(v, h.what("location"))); },
+           py::arg("location"), "Writes the translation into the first translate (or transform) op, inserting one.")
+      .def("get_world_location",
+           [](const PrimHandle& h) { return vec3ToPython(worldLocation(h.ctx->liveStage(), h.prim())); })
+      .def("set_world_location",
+           [](PrimHandle& h, py::handle v) {
+             Vec3d world = vec3FromPython(v, h.what("world location"));
+             Matrix4d parent = parentWorld(h.ctx->liveStage(), h.prim());
+             setOpLocation(locationOp(h), (parent.inverse() * world.homogeneous()).head<3>());
+           },
+           py::arg("location"), "Places the prim's origin at a world position (through its parent's transform).")
+      .def("get_rotation", [](const PrimHandle& h) {
+             const Prim& p = h.prim();
+             std::optional<size_t> i = findRotationOp(p);
+             return matrix3ToPython(i ? opRotation(p.xformOps()[*i]) : Matrix3d::Identity());
+           }, "The rotation op's rotation (3x3, rows), identity without one.")
+      .def("set_rotation",
+           [](PrimHandle& h, py::handle r) { setOpRotation(rotationOp(h), matrix3FromPython(r, h.what("rotation"))); },
+           py::arg("rotation"), "Writes a 3x3 rotation into the rotation op (orient inserted when there is none).")
+      .def("get_world_rotation",
+           [](const PrimHandle& h) { return matrix3ToPython(worldRotation(h.ctx->liveStage(), h.prim())); })
+      .def("set_world_rotation",
+           [](PrimHandle& h, py::handle r) {
+             Matrix3d world = matrix3FromPython(r, h.what("world rotation"));
+             const Prim& p = h.prim();
+             Matrix3d parent =
+                 p.parent()->isPseudoRoot() ? Matrix3d::Identity() : worldRotation(h.ctx->liveStage(), *p.parent());
+             setOpRotation(rotationOp(h), parent.transpose() * world);
+           },
+           py::arg("rotation"), "Gives the prim a world rotation (its parent's rotation compensated).")
+      .def("set_scale",
+           [](PrimHandle& h, py::handle s) {
+             Vec3d scale = vec3FromPython(s, h.what("scale"));
+             Prim& p = h.prim();
+             if (!p.typeInfo().xformable) throw py::value_error(h.path + " has no transform");
+             if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
+             for (XformOp& op : p.xformOps())
+               if (op.kind == XformOpKind::Scale && op.suffix.empty()) {
+                 op.value = Value::makeDouble3(scale);
+                 return;
+               }
+             p.xformOps().push_back(XformOp{XformOpKind::Scale, "", Value::makeDouble3(scale)});
+           },
+           py::arg("scale"), "Writes xformOp:scale (appended last, so it applies first, when missing).")
+      .def("get_local_matrix", [](const PrimHandle& h) { return matrix4ToPython(h.prim().localMatrix()); },
+           "4x4, column-vector convention (p_parent = M @ p).")
+      .def("get_world_matrix",
+           [](const PrimHandle& h) { return matrix4ToPython(h.ctx->liveStage().worldMatrix(h.prim())); },
+           "4x4, column-vector convention (p_world = M @ p).")
+      .def_property_readonly("semantics",
+                             [](const PrimHandle& h) {
+                               py::dict d;
+                               for (const auto& [type, labels] : h.prim().semantics()) d[py::str(type)] = labels;
+                               return d;
+                             })
+      .def("get_semantic_labels",
+           [](const PrimHandle& h, const std::string& taxonomy) {
+             auto it = h.prim().semantics().find(taxonomy);
+             return it == h.prim().semantics().end() ? std::vector<std::string>{} : it->second;
+           },
+           py::arg("taxonomy") = "class")
+      .def("set_semantic_labels",
+           [](PrimHandle& h, std::vector<std::string> labels, const std::string& taxonomy) {
+             Prim& p = h.prim();
+             if (!h.ctx->created(p)) h.ctx->journal().beforeSemanticsWrite(p);
+             if (labels.empty()) p.semantics().erase(taxonomy);
+             else p.semantics()[taxonomy] = std::move(labels);
+           },
+           py::arg("labels"), py::arg("taxonomy") = "class", "Replaces the labels of one taxonomy ([] removes it).")
+      .def_property_readonly("material_path",
+                             [](const PrimHandle& h) -> py::object {
+                               const auto& m = h.prim().material();
+                               return m ? py::object(py::str(m->path)) : py::object(py::none());
+                             })
+      .def("bind_material",
+           [](PrimHandle& h, const std::string& material, const std::string& strength) {
+             Prim& p = h.prim();
+             const Prim* m = h.ctx->liveStage().find(material);
+             if (!m || m->type() != PrimType::Material)
+               throw py::value_error(h.path + ".bind_material: " + material + " is not a Material prim");
+             if (strength != "weakerThanDescendants" && strength != "strongerThanDescendants")
+               throw py::value_error(h.path + ".bind_material: strength is weakerThanDescendants or "
+                                              "strongerThanDescendants, found " + strength);
+             if (!h.ctx->created(p)) h.ctx->journal().beforeMaterialWrite(p);
+             p.material() = MaterialBinding{material, strength};
+           },
+           py::arg("material"), py::arg("strength") = "weakerThanDescendants")
+      .def("unbind_material",
+           [](PrimHandle& h) {
+             Prim& p = h.prim();
+             if (!h.ctx->created(p)) h.ctx->journal().beforeMaterialWrite(p);
+             p.material().reset();
+           })
+      .def("__eq__", [](const PrimHandle& a, const PrimHandle& b) { return a.path == b.path; })
+      .def("__hash__", [](const PrimHandle& h) { return py::hash(py::str(h.path)); })
+      .def("__repr__", [](const PrimHandle& h) { return "<Prim " + h.path + ">"; });
+
+  py::class_<StageHandle>(m, "Stage", "The stage the run plays.")
+      .def("get_prim",
+           [](StageHandle& s, const std::string& path) { return handleOrNone(s.ctx, s.ctx->liveStage().find(path)); },
+           py::arg("path"), "The prim at path, or None.")
+      .def("traverse", &traverse, py::arg("root") = py::none(),
+           "Every prim below root (root included; the whole stage without one), pre-order.")
+      .def("define_prim", &definePrim, py::arg("path"), py::arg("type_name") = "Xform",
+           "Creates a prim under /Behaviors/<BEHAVIOR_NS>/; it is removed again on stop.")
+      .def("remove_prim", &removePrim, py::arg("path"), "Removes a prim this behavior created.")
+      .def("next_free_path",
+           [](StageHandle& s, const std::string& path) { return nextFreePath(s.ctx->liveStage(), path); },
+           py::arg("path"))
+      .def_property_readonly("meters_per_unit",
+                             [](StageHandle& s) { return s.ctx->liveStage().metadata().metersPerUnit; })
+      .def_property_readonly("up_axis", [](StageHandle& s) { return s.ctx->liveStage().metadata().upAxis; })
+      .def_property_readonly("time_codes_per_second",
+                             [](StageHandle& s) { return s.ctx->liveStage().metadata().timeCodesPerSecond; });
+
+  py::class_<ScriptContext, std::shared_ptr<ScriptContext>>(m, "Context", "A behavior's handle (self._ctx).")
+      .def_property_readonly("prim", [](const ContextPtr& c) { c->liveStage(); return PrimHandle{c, c->primPath}; })
+      .def_property_readonly("prim_path", [](const ContextPtr& c) { return c->primPath; })
+      .def_property_readonly("stage", [](const ContextPtr& c) { c->liveStage(); return StageHandle{c}; })
+      .def_property_readonly("rng", [](const ContextPtr& c) -> Rng& { return c->randomStream(); },
+                             py::return_value_policy::reference_internal)
+      .def("get_exposed_variable",
+           [](const ContextPtr& c, const std::string& name) -> py::object {
+             const Prim* p = c->liveStage().find(c->primPath);
+             const Value* v = p ? p->value(exposedAttributeName(c->ns(), name)) : nullptr;
+             return v ? toPython(*v) : py::object(py::none());
+           })
+      .def("publish",
+           [](const ContextPtr& c, const std::string& event, const py::dict& payload) {
+             c->liveStage();
+             c->events->publish(event, payloadFromPython(payload, "publish " + event));
+           })
+      .def("subscribe",
+           [](const ContextPtr& c, const std::string& event, py::function callback) {
+             c->liveStage();
+             // A Python error in the callback stops the run with its traceback.
+             std::string where = c->primPath + ": " + c->ns() + ": the callback for event '" + event + "'";
+             EventBus::Subscription id = c->events->subscribe(event, [callback, where](const Payload& payload) {
+               try {
+                 callback(payloadToPython(payload));
+               } catch (py::error_already_set& e) {
+                 throwScriptRunError(e, where);
+               }
+             });
+             c->subscriptions.push_back(id);
+             return id;
+           })
+      .def("unsubscribe", [](const ContextPtr& c, EventBus::Subscription id) {
+        c->liveStage();
+        c->events->unsubscribe(id);
+        std::erase(c->subscriptions, id);
+      });
+}
+
+}  // namespace sdg::scripting

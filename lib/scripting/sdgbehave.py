@@ -1,0 +1,266 @@
+"""sdgbehave: the Python API of behavior scripts.
+
+A behavior script is a Python file that a scene lists under `scripts:`.
+Loading the scene runs the file's top-level code, as importing a module
+does, and registers every class it defines that derives from `Behavior` and
+sets its own `BEHAVIOR_NS`. Attached under a prim's `behaviors:` by that
+namespace, the class is instantiated once per prim, like a built-in.
+
+This file is compiled into sdgbehave; docs/scripting.md documents every call.
+"""
+import ast as _ast
+import importlib.util as _importlib_util
+import os as _os
+import random as _random
+import sys as _sys
+import traceback as _traceback
+
+import _sdgbehave as _native
+from _sdgbehave import Prim, Rng, Stage, look_at_rotation  # noqa: F401  (documented API)
+
+__all__ = ["Behavior", "IntervalBehavior", "Prim", "Stage", "Rng", "look_at_rotation", "INTERVAL_VARIABLE"]
+
+# The `interval` variable of IntervalBehavior; added to VARIABLES_TO_EXPOSE
+# when a subclass does not declare one itself.
+INTERVAL_VARIABLE = {"attr_name": "interval", "attr_type": "uint", "default_value": 0,
+                     "doc": "Apply every N updates; 0 means every update."}
+
+
+class _Log:
+    """Messages through sdgbehave's logger, prefixed with the prim and namespace."""
+
+    def __init__(self, behavior):
+        self._behavior = behavior
+
+    def _write(self, level, message):
+        b = self._behavior
+        _native.log(level, f"{b.prim_path}: {b.BEHAVIOR_NS}: {message}")
+
+    def debug(self, message):
+        self._write("debug", message)
+
+    def info(self, message):
+        self._write("info", message)
+
+    def warn(self, message):
+        self._write("warning", message)
+
+    warning = warn
+
+    def error(self, message):
+        self._write("error", message)
+
+
+class Behavior:
+    """Base class of every scripted behavior: the lifecycle hooks and what a
+    behavior may use (its prim, the stage, its random stream, events, the log).
+
+    Subclasses set BEHAVIOR_NS (a camelCase name) and VARIABLES_TO_EXPOSE (a
+    list of {"attr_name", "attr_type", "default_value", "doc"} records) and
+    override the hooks they need. RNG_STREAM, when set, keys the random
+    stream by that name instead of BEHAVIOR_NS (a port of a built-in sets the
+    built-in's name to draw exactly what the built-in draws).
+    """
+
+    BEHAVIOR_NS = None
+    VARIABLES_TO_EXPOSE = []
+    RNG_STREAM = None
+    _ctx = None  # the host's handle, set before on_init
+
+    # --- what the host gives every instance ------------------------------
+    @property
+    def prim(self):
+        """The prim this behavior is attached to (a Prim)."""
+        return self._ctx.prim
+
+    @property
+    def prim_path(self):
+        """The attached prim's path, a str."""
+        return self._ctx.prim_path
+
+    @property
+    def stage(self):
+        """The stage (a Stage)."""
+        return self._ctx.stage
+
+    @property
+    def rng(self):
+        """This (behavior, prim)'s random stream (an Rng), derived from the run
+        seed, the prim path, the namespace and the iteration; or, when the
+        behavior exposes an int `seed` variable >= 0, from that seed. It starts
+        afresh on every play after a stop."""
+        return self._ctx.rng
+
+    @property
+    def log(self):
+        """log.debug/info/warn/error(message), prefixed with the prim path."""
+        return _Log(self)
+
+    def get_exposed_variable(self, name):
+        """The value of exposed variable `name` (attribute
+        exposedVar:<BEHAVIOR_NS>:<name> on the prim), or None if it is missing."""
+        return self._ctx.get_exposed_variable(name)
+
+    def publish(self, event, payload=None):
+        """Queues an event; subscribers get it on the next update. The payload
+        is a dict of str keys and str, number or bool values."""
+        self._ctx.publish(event, payload or {})
+
+    def subscribe(self, event, callback):
+        """Calls callback(payload_dict) for every `event`; returns an id for
+        unsubscribe. Subscriptions end when the behavior is destroyed."""
+        return self._ctx.subscribe(event, callback)
+
+    def unsubscribe(self, subscription):
+        self._ctx.unsubscribe(subscription)
+
+    # --- lifecycle hooks (override what you need) -------------------------
+    def on_init(self):
+        """Once, when the run creates the behavior (before the pre-roll)."""
+
+    def on_play(self):
+        """When the timeline starts playing (and on resume from pause)."""
+
+    def on_pause(self):
+        """When the timeline pauses."""
+
+    def on_stop(self):
+        """When the timeline stops. sdgbehave then undoes every change this
+        behavior made to the stage while playing."""
+
+    def on_update(self, current_time, delta_time):
+        """Once per update while the timeline plays (one update per frame)."""
+
+    def on_destroy(self):
+        """Once, at the end of the run (after a stop)."""
+
+
+class IntervalBehavior(Behavior):
+    """A timeline randomizer with Isaac Sim's `interval` counting: setup() on
+    the first play after a stop, apply() once on play when interval > 0, then
+    apply() every `interval` updates (0: every update; updates with
+    delta_time <= 0 are not counted); reset() on stop. The counter keeps its
+    value across pause and resume."""
+
+    interval = 0
+    update_counter = 0
+    _set_up = False
+
+    def setup(self):
+        """Read exposed variables and cache what apply() needs."""
+
+    def apply(self):
+        """Change the stage: called as the interval says."""
+        raise NotImplementedError(f"{type(self).__name__} must define apply()")
+
+    def reset(self):
+        """Forget caches (the stage itself is restored by sdgbehave)."""
+
+    def on_play(self):
+        self.interval = self.get_exposed_variable("interval")
+        if not self._set_up:
+            self.setup()
+            self._set_up = True
+        if self.interval > 0:
+            self.apply()  # the first captured frame is already randomized
+
+    def on_update(self, current_time, delta_time):
+        if delta_time <= 0:
+            return
+        if self.interval == 0:
+            self.apply()
+            return
+        self.update_counter += 1
+        if self.update_counter >= self.interval:
+            self.apply()
+            self.update_counter = 0
+
+    def on_stop(self):
+        if self._set_up:
+            self.reset()
+        self._set_up = False
+        self.update_counter = 0
+        self.interval = 0
+
+
+# --- the host's side (not part of the API) --------------------------------
+
+def _entry_lines(tree):
+    """{class name: (class line, VARIABLES_TO_EXPOSE line, [entry lines])} from
+    the script's syntax tree, so problems point at the entry that has them."""
+    lines = {}
+    for node in _ast.walk(tree):
+        if not isinstance(node, _ast.ClassDef):
+            continue
+        var_line, entries = node.lineno, []
+        for stmt in node.body:
+            targets = stmt.targets if isinstance(stmt, _ast.Assign) else \
+                [stmt.target] if isinstance(stmt, _ast.AnnAssign) else []
+            if any(isinstance(t, _ast.Name) and t.id == "VARIABLES_TO_EXPOSE" for t in targets):
+                var_line = stmt.lineno
+                if isinstance(stmt.value, (_ast.List, _ast.Tuple)):
+                    entries = [(e.lineno, e.col_offset + 1) for e in stmt.value.elts]
+        lines[node.name] = (node.lineno, var_line, entries)
+    return lines
+
+
+def _load_script(path, module_name):
+    """Runs the script as module `module_name` (its folder first on sys.path)
+    and returns [(class, class line, VARIABLES_TO_EXPOSE line, entry lines)]
+    for every Behavior subclass it defines with its own BEHAVIOR_NS."""
+    folder = _os.path.dirname(_os.path.abspath(path))
+    if folder not in _sys.path:
+        _sys.path.insert(0, folder)
+    with open(path, "rb") as f:
+        source = f.read()
+    tree = _ast.parse(source, filename=path)
+    spec = _importlib_util.spec_from_file_location(module_name, path)
+    module = _importlib_util.module_from_spec(spec)
+    _sys.modules[module_name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del _sys.modules[module_name]
+        raise
+    lines = _entry_lines(tree)
+    found = []
+    for obj in list(vars(module).values()):
+        if isinstance(obj, type) and issubclass(obj, Behavior) and obj.__module__ == module_name \
+                and "BEHAVIOR_NS" in obj.__dict__:
+            class_line, var_line, entries = lines.get(obj.__name__, (1, 1, []))
+            variables = list(obj.VARIABLES_TO_EXPOSE) if isinstance(obj.VARIABLES_TO_EXPOSE, (list, tuple)) \
+                else obj.VARIABLES_TO_EXPOSE
+            if issubclass(obj, IntervalBehavior) and isinstance(variables, list) and not any(
+                    isinstance(v, dict) and v.get("attr_name") == "interval" for v in variables):
+                variables.append(dict(INTERVAL_VARIABLE))
+            found.append((obj, obj.__name__, class_line, var_line, entries, variables))
+    return found
+
+
+def _error_location(exc, files):
+    """(file, line, column, text) of an exception: a SyntaxError's own place,
+    else the innermost traceback frame in one of `files` (the scripts), else
+    the innermost frame; text is the formatted traceback."""
+    text = "".join(_traceback.format_exception(type(exc), exc, exc.__traceback__)).rstrip()
+    if isinstance(exc, SyntaxError) and exc.filename:
+        return exc.filename, exc.lineno or 0, exc.offset or 0, f"{type(exc).__name__}: {exc.msg}"
+    frames = _traceback.extract_tb(exc.__traceback__)
+    chosen = None
+    for frame in frames:
+        if _os.path.abspath(frame.filename) in files or frame.filename in files:
+            chosen = frame
+    if chosen is None and frames:
+        chosen = frames[-1]
+    if chosen is None:
+        return "", 0, 0, text
+    return chosen.filename, chosen.lineno or 0, 0, text
+
+
+def _seed_global_random(seed):
+    """Seeds Python's `random` (and numpy's global generator, if a script
+    imported numpy) so that scripts that use them still run reproducibly;
+    self.rng is the supported source of randomness."""
+    _random.seed(seed)
+    numpy = _sys.modules.get("numpy")
+    if numpy is not None:
+        numpy.random.seed(seed % (2 ** 32))
