@@ -102,6 +102,18 @@ std::string isaacRootFor(const SceneRequest& request, const Scene& scene) {
   return root;
 }
 
+// A file the scene declares, relative to its folder; SceneError at the
+// declaration when it does not exist.
+std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const DeclaredFile& file, const char* what) {
+  std::filesystem::path p(file.path);
+  if (p.is_relative()) p = sceneDir / p;
+  p = p.lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(p, ec))
+    throw SceneError(file.loc, std::string(what) + " " + text::quote(file.path) + " not found; searched: " + p.string());
+  return p.string();
+}
+
 }  // namespace
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {
@@ -110,25 +122,11 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   // The scene's own plugins and scripts load before its prims are read:
   // their behaviors must be known to check the prims. Paths are relative to
   // the scene file.
-  std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
-  for (const DeclaredFile& script : declaredFiles(doc, "scripts")) {
-    std::filesystem::path p(script.path);
-    if (p.is_relative()) p = sceneDir / p;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec))
-      throw SceneError(script.loc, "scripts: behavior script " + text::quote(script.path) + " not found; searched: " +
-                                       p.lexically_normal().string());
-    scripting::loadScript(registry, p.lexically_normal().string(), script.loc);
-  }
-  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins")) {
-    std::filesystem::path p(plugin.path);
-    if (p.is_relative()) p = sceneDir / p;
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec))
-      throw SceneError(plugin.loc, "plugins: plugin library " + text::quote(plugin.path) + " not found; searched: " +
-                                       p.lexically_normal().string());
-    registry.loadPlugin(p.string(), plugin.loc);
-  }
+  const std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
+  for (const DeclaredFile& script : declaredFiles(doc, "scripts"))
+    scripting::loadScript(registry, existingDeclaredFile(sceneDir, script, "scripts: behavior script"), script.loc);
+  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins"))
+    registry.loadPlugin(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"), plugin.loc);
   Scene scene = buildScene(doc, registry.catalog(), request.overrides);
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
