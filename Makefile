@@ -4,8 +4,9 @@ JOBS   ?= $(shell nproc)
 PRESET ?= release
 BUILD  := build/$(PRESET)
 BIN    := $(BUILD)/app/sdgbehave
+PREFIX ?= /usr/local
 
-.PHONY: deps configure build test demo bench asan fuzz clean
+.PHONY: deps configure build install test demo bench asan fuzz clean
 
 deps:
 	@tools/install-deps.sh
@@ -15,6 +16,10 @@ configure: deps
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
+
+# The executable, the plugin headers and the CMake package (docs/plugins.md).
+install: build
+	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

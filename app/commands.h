@@ -56,5 +56,6 @@ void addRun(CLI::App& app, int& exitCode);
 void addRender(CLI::App& app, int& exitCode);
 void addVerify(CLI::App& app, int& exitCode);
 void addMerge(CLI::App& app, int& exitCode);
+void addNewBehavior(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

@@ -24,7 +24,8 @@ constexpr const char* kDescription =
     "  sdgbehave run scenes/examples/location_randomizer.yaml --frames 6 --no-render --record changes.jsonl\n"
     "  sdgbehave run scenes/warehouse.yaml --frames 50 --shard 0/2 --out ds   # and --shard 1/2, then:\n"
     "  sdgbehave merge ds && sdgbehave verify ds\n"
-    "  sdgbehave schema --out schemas/scene.schema.json\n";
+    "  sdgbehave schema --out schemas/scene.schema.json\n"
+    "  sdgbehave new-behavior randomScale   # a starter behavior script (Python) and a scene that uses it\n";
 
 }  // namespace
 
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
   cli::addRender(app, exitCode);
   cli::addVerify(app, exitCode);
   cli::addMerge(app, exitCode);
+  cli::addNewBehavior(app, exitCode);
 
   // Logging must be configured before subcommand callbacks run.
   app.parse_complete_callback([&] {

@@ -8,6 +8,7 @@ namespace sdg {
 std::string SourceLoc::str() const {
   if (file.empty()) return {};
   if (line <= 0) return file.str();
+  if (column <= 0) return file.str() + ":" + std::to_string(line);
   return file.str() + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 

@@ -37,7 +37,7 @@ struct SourceLoc {
   int column = 0;  // 1-based; 0 = unknown
 
   bool known() const { return !file.empty(); }
-  // "file:line:col", "file" when the position is unknown, "" when nothing is.
+  // "file:line:col", "file:line" without a column, "file" when the position is unknown, "" when nothing is.
   std::string str() const;
   bool operator==(const SourceLoc&) const = default;
 };

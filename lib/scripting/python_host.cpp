@@ -59,7 +59,7 @@ PythonHost::PythonHost() {
 void PythonHost::addScriptFile(const std::string& absolutePath) { scriptFiles_.attr("add")(py::str(absolutePath)); }
 
 PythonHost::ErrorInfo PythonHost::describe(py::error_already_set& error) {
-  py::tuple where = api_.attr("_error_location")(error.value(), scriptFiles_);
+  py::tuple where = api_.attr("_error_location")(error.value(), error.trace(), scriptFiles_);
   ErrorInfo info;
   std::string file = where[0].cast<std::string>();
   if (!file.empty()) info.loc = SourceLoc{file, where[1].cast<int>(), where[2].cast<int>()};

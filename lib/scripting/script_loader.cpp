@@ -65,6 +65,8 @@ AttributeSpec readVariable(py::handle record, const std::string& ns, const Sourc
     return spec;
   }
   py::dict d = py::reinterpret_borrow<py::dict>(record);
+  const size_t errorsBefore = diag.errorCount();
+  auto failed = [&] { return diag.errorCount() != errorsBefore; };
   for (auto [key, value] : d) {
     std::string k = py::str(key);
     if (std::find(recordKeys().begin(), recordKeys().end(), k) == recordKeys().end())
@@ -73,7 +75,7 @@ AttributeSpec readVariable(py::handle record, const std::string& ns, const Sourc
   }
   for (const char* required : {"attr_name", "attr_type", "default_value", "doc"})
     if (!d.contains(required)) diag.error(loc, where + ": the entry lacks '" + std::string(required) + "'");
-  if (diag.hasErrors()) return spec;
+  if (failed()) return spec;
 
   if (!py::isinstance<py::str>(d["attr_name"]) || !isAttributeName(d["attr_name"].cast<std::string>())) {
     diag.error(loc, where + ": attr_name must be a name such as 'interval' or 'range:minPosition', found " +

@@ -237,14 +237,19 @@ def _load_script(path, module_name):
     return found
 
 
-def _error_location(exc, files):
+def _error_location(exc, tb, files):
     """(file, line, column, text) of an exception: a SyntaxError's own place,
     else the innermost traceback frame in one of `files` (the scripts), else
-    the innermost frame; text is the formatted traceback."""
-    text = "".join(_traceback.format_exception(type(exc), exc, exc.__traceback__)).rstrip()
+    the innermost frame; text is the formatted traceback, without the frames
+    of sdgbehave's own loading machinery."""
     if isinstance(exc, SyntaxError) and exc.filename:
         return exc.filename, exc.lineno or 0, exc.offset or 0, f"{type(exc).__name__}: {exc.msg}"
-    frames = _traceback.extract_tb(exc.__traceback__)
+    frames = [f for f in _traceback.extract_tb(tb)
+              if f.filename != "sdgbehave.py" or f.name not in ("_load_script",)]
+    frames = [f for f in frames if not f.filename.startswith("<frozen importlib")]
+    text = "Traceback (most recent call last):\n" + "".join(_traceback.format_list(frames)) + \
+        "".join(_traceback.format_exception_only(type(exc), exc))
+    text = text.rstrip()
     chosen = None
     for frame in frames:
         if _os.path.abspath(frame.filename) in files or frame.filename in files:
@@ -253,7 +258,8 @@ def _error_location(exc, files):
         chosen = frames[-1]
     if chosen is None:
         return "", 0, 0, text
-    return chosen.filename, chosen.lineno or 0, 0, text
+    column = (chosen.colno + 1) if getattr(chosen, "colno", None) is not None else 0
+    return chosen.filename, chosen.lineno or 0, column, text
 
 
 def _seed_global_random(seed):

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The committed JSON Schema equals what `sdgbehave schema` generates, and
 every scene under scenes/ starts with the schema comment, passes the schema
+(with its behavior scripts, the schema `sdgbehave schema --script` makes)
 and passes `sdgbehave validate`."""
 import json
 import os
@@ -35,7 +36,16 @@ def main():
         relative = os.path.relpath(schema_path, os.path.dirname(scene))
         if not text.startswith(f"# yaml-language-server: $schema={relative}\n"):
             failures.append(f"{scene}: first line must be '# yaml-language-server: $schema={relative}'")
-        for error in validator.iter_errors(load_instance(text)):
+        instance = load_instance(text)
+        scene_validator = validator
+        if instance.get("scripts"):
+            # A scene with behavior scripts is checked against the schema
+            # generated with those scripts (`sdgbehave schema --script`).
+            flags = [arg for script in instance["scripts"]
+                     for arg in ("--script", os.path.join(os.path.dirname(scene), script))]
+            generated_here = subprocess.run([binary, "schema", *flags], capture_output=True, text=True, check=True)
+            scene_validator = jsonschema.Draft7Validator(json.loads(generated_here.stdout))
+        for error in scene_validator.iter_errors(instance):
             failures.append(f"{scene}: schema: {error.message} at {list(error.absolute_path)}")
         result = subprocess.run([binary, "validate", scene], capture_output=True, text=True)
         if result.returncode != 0:

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "scene_fixtures.h"
+#include "run/scene_setup.h"
 #include "scene_io/scene_writer.h"
 
 using namespace sdg;
@@ -20,12 +21,14 @@ std::vector<std::filesystem::path> shippedScenes() {
 }  // namespace
 
 TEST_CASE("round trip: every scene in scenes/ saves and reloads to an equal scene", "[scene_io][roundtrip]") {
-  const BehaviorCatalog catalog = test::testCatalog();
   auto scenes = shippedScenes();
   REQUIRE(scenes.size() >= 2);
   for (const auto& path : scenes) {
     CAPTURE(path.string());
-    Scene original = loadScene(path.string(), catalog);
+    // Loaded as a run loads it, so the behaviors of the scene's scripts are known.
+    LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = path.string()});
+    const BehaviorCatalog& catalog = loaded.registry.catalog();
+    const Scene& original = loaded.scene;
     std::string yaml = writeSceneYaml(original, catalog);
     Scene reloaded = buildScene(sceneDocumentFromText(yaml, "saved.yaml"), catalog);
     CHECK(reloaded == original);

@@ -1,0 +1,44 @@
+"""Scripts that talk through events: one answers the scene's pre-roll, one
+publishes on every apply, one listens and writes what it heard."""
+import sdgbehave
+
+
+class Responder(sdgbehave.Behavior):
+    """Answers test.responder.in {action: count} with the number of requests."""
+
+    BEHAVIOR_NS = "responder"
+
+    def on_init(self):
+        self.requests = 0
+        self.subscribe("test.responder.in", self.on_request)
+
+    def on_request(self, payload):
+        if payload.get("action") != "count":
+            return
+        self.requests += 1
+        self.prim.set_attribute("user:requests", self.requests, type="int")
+        self.publish("test.responder.out", {"prim_path": self.prim_path, "state_name": "COUNTED",
+                                            "count": self.requests})
+
+
+class Pinger(sdgbehave.IntervalBehavior):
+    """Publishes test.ping {n} on every apply."""
+
+    BEHAVIOR_NS = "pinger"
+
+    def setup(self):
+        self.sent = 0
+
+    def apply(self):
+        self.sent += 1
+        self.publish("test.ping", {"n": self.sent, "from": self.prim_path})
+
+
+class Listener(sdgbehave.Behavior):
+    """Writes the last ping it heard into user:lastPing."""
+
+    BEHAVIOR_NS = "listener"
+
+    def on_init(self):
+        self.subscribe("test.ping", lambda payload: self.prim.set_attribute("user:lastPing", int(payload["n"]),
+                                                                            type="int"))

@@ -1,0 +1,4 @@
+import sdgbehave
+
+SETTINGS = {"scale": 2}
+FACTOR = SETTINGS["scael"]
