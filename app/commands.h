@@ -57,5 +57,6 @@ void addRender(CLI::App& app, int& exitCode);
 void addVerify(CLI::App& app, int& exitCode);
 void addMerge(CLI::App& app, int& exitCode);
 void addNewBehavior(CLI::App& app, int& exitCode);
+void addFlatten(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

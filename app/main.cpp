@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   int exitCode = cli::kExitOk;
   cli::addValidate(app, exitCode);
   cli::addInspect(app, exitCode);
+  cli::addFlatten(app, exitCode);
   cli::addSchema(app, exitCode);
   cli::addDescribe(app, exitCode);
   cli::addRun(app, exitCode);

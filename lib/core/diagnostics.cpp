@@ -12,11 +12,19 @@ std::string SourceLoc::str() const {
   return file.str() + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
+std::string SourceLoc::referenceChain() const {
+  std::string out;
+  for (const SourceLoc* from = via.get(); from; from = from->via.get())
+    out += (out.empty() ? "referenced from " : ", from ") + from->str();
+  return out;
+}
+
 std::string Diagnostic::format() const {
   std::string out = loc.str();
   if (!out.empty()) out += ": ";
   out += severity == Severity::Error ? "error: " : "warning: ";
   out += message;
+  if (loc.via) out += " (" + loc.referenceChain() + ")";
   return out;
 }
 

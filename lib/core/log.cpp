@@ -60,6 +60,13 @@ void diagnostic(const Diagnostic& d) {
     j["line"] = d.loc.line;
     j["column"] = d.loc.column;
     j["message"] = d.message;
+    // A value mounted from a smart asset: where each file referenced the next.
+    if (d.loc.via) {
+      nlohmann::ordered_json chain = nlohmann::ordered_json::array();
+      for (const SourceLoc* from = d.loc.via.get(); from; from = from->via.get())
+        chain.push_back({{"file", from->file.str()}, {"line", from->line}, {"column", from->column}});
+      j["referenced_from"] = std::move(chain);
+    }
     line = j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   } else {
     line = d.format();

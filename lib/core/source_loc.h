@@ -32,13 +32,21 @@ class FileName {
 };
 
 struct SourceLoc {
+  SourceLoc() = default;
+  SourceLoc(FileName file, int line, int column) : file(std::move(file)), line(line), column(column) {}
+
   FileName file;
   int line = 0;    // 1-based; 0 = unknown
   int column = 0;  // 1-based; 0 = unknown
+  // Where the file was referenced from, for values mounted from a smart
+  // asset (scene_io/references.h); null for the scene's own values.
+  std::shared_ptr<const SourceLoc> via;
 
   bool known() const { return !file.empty(); }
   // "file:line:col", "file:line" without a column, "file" when the position is unknown, "" when nothing is.
   std::string str() const;
+  // "referenced from scene.yaml:12:7[, from ...]", or "" without a via.
+  std::string referenceChain() const;
   bool operator==(const SourceLoc&) const = default;
 };
 

@@ -1,5 +1,6 @@
 #include "run/scene_setup.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -8,6 +9,7 @@
 #include "scripting/script_loader.h"
 #include "core/text.h"
 #include "core/file_io.h"
+#include "scene_io/references.h"
 #include "scene_io/scene_loader.h"
 #include "scene_io/scene_writer.h"
 
@@ -60,19 +62,26 @@ BehaviorContext behaviorContextFor(LoadedScene& loaded, int64_t seed, RunBehavio
   return context;
 }
 
-void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path) {
+Scene flattenedScene(const LoadedScene& loaded) {
   Scene saved = loaded.scene;
-  saved.events.clear();
-  // Absolute roots and plugins, so the file works from any folder.
+  // Absolute roots, scripts and plugins, so the file works from any folder.
   saved.assetRoots.clear();
   for (const std::string& root : loaded.assets.roots())
     saved.assetRoots.push_back(std::filesystem::absolute(root).lexically_normal().string());
   if (!loaded.assets.isaacRoot().empty())
     saved.isaacAssets = std::filesystem::absolute(loaded.assets.isaacRoot()).lexically_normal().string();
-  for (std::vector<std::string>* files : {&saved.plugins, &saved.scripts})
+  // Every script, the referenced assets' too: the saved stage is flat.
+  saved.scripts = loaded.scriptFiles;
+  for (std::vector<std::string>* files : {&saved.plugins})
     for (std::string& file : *files)
       if (std::filesystem::path(file).is_relative())
         file = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / file).lexically_normal().string();
+  return saved;
+}
+
+void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path) {
+  Scene saved = flattenedScene(loaded);
+  saved.events.clear();
   writeFileAtomic(path, writeSceneYaml(saved, loaded.registry.catalog()));
 }
 
@@ -123,17 +132,32 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   // their behaviors must be known to check the prims. Paths are relative to
   // the scene file.
   const std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
-  for (const DeclaredFile& script : declaredFiles(doc, "scripts"))
-    scripting::loadScript(registry, existingDeclaredFile(sceneDir, script, "scripts: behavior script"), script.loc);
+  std::vector<std::string> scriptFiles = request.scripts;
+  for (const DeclaredFile& script : declaredFiles(doc, "scripts")) {
+    scriptFiles.push_back(existingDeclaredFile(sceneDir, script, "scripts: behavior script"));
+    scripting::loadScript(registry, scriptFiles.back(), script.loc);
+  }
   for (const DeclaredFile& plugin : declaredFiles(doc, "plugins"))
     registry.loadPlugin(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"), plugin.loc);
-  Scene scene = buildScene(doc, registry.catalog(), request.overrides);
+  // Smart assets: their scripts register before any prim is read, so that
+  // the scene can attach and override their behaviors.
+  AssetLibrary assetLibrary;
+  for (const DeclaredFile& script : assetLibrary.preload(doc)) {
+    scriptFiles.push_back(script.path);
+    scripting::loadScript(registry, script.path, script.loc);
+  }
+  Scene scene = buildScene(doc, registry.catalog(), request.overrides, &assetLibrary);
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
   Diagnostics diag;
   checkStageFiles(scene.stage, registry.catalog(), assets, diag);
   diag.throwIfErrors();
-  return LoadedScene{std::move(registry), std::move(scene), std::move(assets)};
+  for (std::string& file : scriptFiles) file = std::filesystem::absolute(file).lexically_normal().string();
+  std::vector<std::string> unique;
+  for (std::string& file : scriptFiles)
+    if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(std::move(file));
+  scriptFiles = std::move(unique);
+  return LoadedScene{std::move(registry), std::move(scene), std::move(assets), std::move(scriptFiles)};
 }
 
 }  // namespace sdg

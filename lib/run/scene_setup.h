@@ -29,6 +29,9 @@ struct LoadedScene {
   BehaviorRegistry registry;
   Scene scene;
   AssetResolver assets;
+  // Every behavior script the scene loaded, its referenced assets' too
+  // (absolute, in load order, each once per listing).
+  std::vector<std::string> scriptFiles;
 };
 
 // Command-line overrides of the scene's render section (--resolution,
@@ -53,6 +56,11 @@ struct RunBehaviorSetup {
   std::vector<nlohmann::ordered_json> reports;
 };
 BehaviorContext behaviorContextFor(LoadedScene& loaded, int64_t seed, RunBehaviorSetup& setup);
+
+// The scene as one self-contained file (`sdgbehave flatten`): references
+// expanded (the loaded stage is flat), asset roots, scripts (the assets'
+// too) and plugins absolute, so it reloads from any folder to the same stage.
+Scene flattenedScene(const LoadedScene& loaded);
 
 // `--save-stage FILE`: the scene as it stands after the pre-roll, without
 // its events (they have run), so reloading it renders the same stacks.

@@ -18,10 +18,17 @@ std::string options(const OptionSet& set) {
   return out;
 }
 
+// Where a value comes from, as a trailing comment: its file:line:col (a
+// smart asset's, with the chain of references), a --set flag, or the default.
+std::string origin(const SourceLoc& loc) {
+  if (!loc.known()) return "  # default";
+  return "  # " + loc.str() + (loc.via ? ", " + loc.referenceChain() : std::string());
+}
+
 void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) {
   std::string indent(2 * (path::depth(prim.path()) - 1), ' ');
   std::string detail = indent + "    ";
-  out << indent << prim.path() << "  " << prim.typeInfo().name << "\n";
+  out << indent << prim.path() << "  " << prim.typeInfo().name << (prim.loc().via ? origin(prim.loc()) : "") << "\n";
   for (const XformOp& op : prim.xformOps()) out << detail << op.attributeName() << " " << op.value.toString() << "\n";
   if (!prim.xformOps().empty() || prim.typeInfo().xformable) {
     Vec3d t = stage.worldMatrix(prim).block<3, 1>(0, 3);
@@ -33,14 +40,16 @@ void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) 
   if (prim.material()) out << detail << "material " << prim.material()->path << " (" << prim.material()->strength << ")\n";
   for (const auto& [name, attribute] : prim.attributes()) {
     if (name.rfind("exposedVar:", 0) == 0) continue;  // listed under their behavior
-    out << detail << name << " " << attribute.value.toString() << (attribute.custom ? "  (custom)" : "") << "\n";
+    out << detail << name << " " << attribute.value.toString() << (attribute.custom ? "  (custom)" : "")
+        << origin(attribute.loc) << "\n";
   }
   for (const std::string& behavior : prim.behaviors()) {
     out << detail << "behavior " << behavior << "\n";
     std::string prefix = exposedAttributeName(behavior, "");
     for (const auto& [name, attribute] : prim.attributes())
       if (name.rfind(prefix, 0) == 0)
-        out << detail << "  " << name.substr(prefix.size()) << " " << attribute.value.toString() << "\n";
+        out << detail << "  " << name.substr(prefix.size()) << " " << attribute.value.toString()
+            << origin(attribute.loc) << "\n";
   }
   for (const auto& [key, value] : prim.metadata()) out << detail << "metadata " << key << ": " << value << "\n";
 }

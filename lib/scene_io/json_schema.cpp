@@ -113,6 +113,8 @@ Json behaviorsSchema(const BehaviorCatalog& catalog) {
     Json vars = Json::object();
     for (const AttributeSpec& var : spec.variables)
       if (!var.locked) vars[var.name] = attributeSchema(var);
+    vars["enabled"] = {{"description", "false detaches the behavior (one a referenced asset attached, say)."},
+                       {"type", "boolean"}};
     props[spec.name] = {{"description", spec.summary},
                         {"type", {"object", "null"}},
                         {"additionalProperties", false},
@@ -159,6 +161,27 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
     defs[name] = primSchema(info);
     primVariants.push_back({{"$ref", "#/definitions/" + name}});
   }
+  // A prim that mounts a smart asset: its type (and so which attributes it
+  // has) comes from the asset, which JSON Schema cannot see.
+  Json referenceValue = {{"oneOf", Json::array({{{"type", "string"}, {"minLength", 1}},
+                                                {{"type", "object"},
+                                                 {"additionalProperties", false},
+                                                 {"required", {"file"}},
+                                                 {"properties", {{"file", {{"type", "string"}}},
+                                                                 {"prim", {{"type", "string"}}}}}}})}};
+  defs["primReference"] = {
+      {"description", "A prim that mounts the prim tree of a smart asset (another scene file) at its path; its "
+                      "other keys override the asset's values."},
+      {"type", "object"},
+      {"required", {"reference"}},
+      {"not", {{"required", {"type"}}}},
+      {"properties", {{"reference", referenceValue},
+                      {"semantics", {{"$ref", "#/definitions/semantics"}}},
+                      {"material", {{"$ref", "#/definitions/material"}}},
+                      {"behaviors", {{"$ref", "#/definitions/behaviors"}}},
+                      {"attributes", {{"$ref", "#/definitions/attributes"}}},
+                      {"metadata", {{"type", "object"}, {"additionalProperties", {{"type", "string"}}}}}}}};
+  primVariants.push_back({{"$ref", "#/definitions/primReference"}});
   defs["prim"] = {{"oneOf", primVariants}};
   defs["writer"] = writerSchema();
   defs["payload"] = payloadSchema();

@@ -5,6 +5,7 @@
 
 #include "core/text.h"
 #include "scene_io/map_reader.h"
+#include "scene_io/references.h"
 #include "scene_io/value_reader.h"
 #include "stage/path.h"
 
@@ -16,6 +17,10 @@ struct PrimDecl {
   PrimType type = PrimType::Xform;
   const RawNode* entry = nullptr;
   SourceLoc loc;
+  const RawNode* typeNode = nullptr;       // the entry's `type:`, if any
+  std::optional<ReferenceSpec> reference;  // the entry's `reference:`, if any
+  bool over = false;     // the prim came from a referenced asset: the entry overrides its values
+  bool defined = false;  // declared (or mounted) without problems, so it gets filled
 };
 
 std::vector<std::string> primTypeNames() {
@@ -134,6 +139,22 @@ void readBehaviors(const RawNode& node, const std::string& what, const BehaviorC
     std::string behaviorWhat = prim.path() + " " + spec->name;
     MapReader vars(params, behaviorWhat, diag);
     if (!vars.ok()) continue;
+    // `enabled: false` detaches a behavior the prim has (from a referenced
+    // asset, say) or keeps one from being attached.
+    const auto attached = std::find(prim.behaviors().begin(), prim.behaviors().end(), spec->name);
+    if (const RawNode* enabled = vars.get("enabled")) {
+      std::optional<Value> on = readValue(*enabled, ValueType::Bool, behaviorWhat + ".enabled", diag);
+      if (on && !on->get<bool>()) {
+        if (params.entries.size() > 1)
+          diag.error(enabled->loc, behaviorWhat + ": switched off with enabled: false, so its other keys would do "
+                                                  "nothing; remove them");
+        if (attached != prim.behaviors().end()) {
+          prim.behaviors().erase(attached);
+          removeExposedVariables(prim, *spec);
+        }
+        continue;
+      }
+    }
     for (const AttributeSpec& var : spec->variables) {
       const RawNode* valueNode = vars.get(var.name);
       if (!valueNode) continue;
@@ -150,7 +171,8 @@ void readBehaviors(const RawNode& node, const std::string& what, const BehaviorC
     }
     vars.finish();
     createExposedVariables(prim, *spec);
-    prim.behaviors().push_back(spec->name);
+    if (std::find(prim.behaviors().begin(), prim.behaviors().end(), spec->name) == prim.behaviors().end())
+      prim.behaviors().push_back(spec->name);
   }
 }
 
@@ -163,9 +185,13 @@ void readMetadata(const RawNode& node, const std::string& what, Prim& prim, Diag
   }
 }
 
-// Everything of one prim entry but its type.
+// Everything of one prim entry but its type (and its reference, mounted
+// already). On a prim from a referenced asset the entry's values override
+// the asset's: attributes and labels one by one, behaviors variable by
+// variable, the transform as a whole (any op key replaces every op).
 void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, Diagnostics& diag) {
-  prim.loc() = decl.loc;
+  if (!decl.over) prim.loc() = decl.loc;
+  bool opsReplaced = !decl.over;
   const RawNode& entry = *decl.entry;
   MapReader map(entry, prim.path(), diag);
   if (!map.ok() || entry.isNull()) return;
@@ -206,6 +232,10 @@ void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, 
           diag.error(value.loc, what + ": the quaternion must not be zero");
           continue;
         }
+        if (!opsReplaced) {
+          prim.xformOps().clear();
+          opsReplaced = true;
+        }
         prim.xformOps().push_back(std::move(*op));
       }
       continue;
@@ -232,7 +262,8 @@ bool isValidAttributeName(std::string_view name) {
   }
 }
 
-void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stage, Diagnostics& diag) {
+void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stage, Diagnostics& diag,
+               const PrimReferences& references) {
   if (prims.isNull()) return;  // a scene with no prims yet
   if (!prims.isMap()) {
     diag.error(prims.loc, "prims: expected a mapping from prim path to prim, found " + prims.describe());
@@ -251,7 +282,10 @@ void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stag
       diag.error(key.loc, "prims: " + text::quote(key.scalar) + " is not a valid prim path: " + why);
       continue;
     }
-    PrimDecl decl{key.scalar, PrimType::Xform, &entry, key.loc};
+    PrimDecl decl;
+    decl.path = key.scalar;
+    decl.entry = &entry;
+    decl.loc = key.loc;
     if (!entry.isMap() && !entry.isNull()) {
       diag.error(entry.loc, key.scalar + ": expected a mapping (the prim's type and attributes), found " +
                                 entry.describe());
@@ -269,6 +303,20 @@ void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stag
         continue;
       }
       decl.type = *type;
+      decl.typeNode = typeNode;
+    }
+    if (const RawNode* refNode = entry.isMap() ? entry.find("reference") : nullptr) {
+      if (decl.typeNode) {
+        diag.error(decl.typeNode->loc, key.scalar + ".type: a prim with reference: takes its type from the asset; "
+                                                    "remove type:");
+        continue;
+      }
+      decl.reference = readReferenceSpec(*refNode, key.scalar + ".reference", diag);
+      if (!decl.reference) continue;
+      if (!references.library) {
+        diag.error(refNode->loc, key.scalar + ".reference: references cannot be used here");
+        continue;
+      }
     }
     decls.push_back(std::move(decl));
   }
@@ -278,27 +326,52 @@ void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stag
       diag.error(decl.loc, "prims: duplicate prim path " + decl.path + " (first defined at line " +
                                std::to_string(it->second->loc.line) + ")");
   }
-  // Pass 2: every parent must be listed; parents are never created implicitly.
-  std::vector<const PrimDecl*> ordered;
-  for (const PrimDecl& decl : decls) {
-    if (byPath.at(decl.path) != &decl) continue;  // the duplicate, reported
-    std::string_view parent = path::parent(decl.path);
-    if (parent != "/" && !byPath.count(parent)) {
-      diag.error(decl.loc, decl.path + ": its parent " + std::string(parent) +
-                               " is not defined; add it to prims (e.g. `" + std::string(parent) +
-                               ": {type: Xform}`): sdgbehave does not create parents implicitly");
-      continue;
-    }
-    ordered.push_back(&decl);
-  }
-  if (diag.hasErrors()) return;
-  // Pass 3: define parents before children; siblings keep document order.
+  // Pass 2: define parents before children (siblings in document order),
+  // mounting referenced assets as their prims come; every parent must be
+  // listed or mounted.
+  std::vector<PrimDecl*> ordered;
+  for (PrimDecl& decl : decls)
+    if (byPath.at(decl.path) == &decl) ordered.push_back(&decl);  // a duplicate was reported
   std::stable_sort(ordered.begin(), ordered.end(), [](const PrimDecl* a, const PrimDecl* b) {
     return path::depth(a->path) < path::depth(b->path);
   });
-  for (const PrimDecl* decl : ordered) stage.definePrim(decl->path, decl->type);
-  // Pass 4: fill in document order.
-  for (const PrimDecl& decl : decls) fillPrim(decl, catalog, *stage.find(decl.path), diag);
+  for (PrimDecl* decl : ordered) {
+    std::string_view parent = path::parent(decl->path);
+    if (parent != "/" && !stage.find(parent)) {
+      if (!byPath.count(parent))  // a listed parent that failed was reported already
+        diag.error(decl->loc, decl->path + ": its parent " + std::string(parent) +
+                                  " is not defined; add it to prims (e.g. `" + std::string(parent) +
+                                  ": {type: Xform}`): sdgbehave does not create parents implicitly");
+      continue;
+    }
+    if (const Prim* mounted = stage.find(decl->path)) {
+      // Mounted from an ancestor's reference: this entry overrides it.
+      if (decl->reference) {
+        diag.error(decl->reference->loc, decl->path + ".reference: the prim comes from the asset referenced by an "
+                                                      "ancestor; put the reference on a prim of its own");
+        continue;
+      }
+      if (decl->typeNode && decl->type != mounted->type()) {
+        diag.error(decl->typeNode->loc, decl->path + ".type: the referenced asset makes it a " +
+                                            std::string(mounted->typeInfo().name) +
+                                            "; an override cannot change a prim's type");
+        continue;
+      }
+      decl->over = decl->defined = true;
+      continue;
+    }
+    if (decl->reference) {
+      references.library->mount(*decl->reference, references.fromDir, decl->path, stage, catalog, diag);
+      decl->over = decl->defined = stage.find(decl->path) != nullptr;
+      continue;
+    }
+    stage.definePrim(decl->path, decl->type);
+    decl->defined = true;
+  }
+  if (diag.hasErrors()) return;
+  // Pass 3: fill in document order.
+  for (const PrimDecl& decl : decls)
+    if (decl.defined) fillPrim(decl, catalog, *stage.find(decl.path), diag);
 }
 
 }  // namespace sdg

@@ -8,12 +8,23 @@
 namespace sdg {
 
 // Keys of a prim entry besides attributes and xform ops.
-inline constexpr std::string_view kPrimStructuralKeys[] = {"type",      "semantics", "material",
-                                                           "behaviors", "attributes", "metadata"};
+inline constexpr std::string_view kPrimStructuralKeys[] = {"type",       "semantics", "material", "behaviors",
+                                                           "attributes", "metadata",  "reference"};
+
+class AssetLibrary;
+// Where `reference:` entries are mounted from: the load's asset library and
+// the folder of the file being read (references are relative to it).
+struct PrimReferences {
+  AssetLibrary* library = nullptr;
+  std::string fromDir;
+};
 
 // Declares and fills every prim. Parents are never created implicitly: a
-// prim whose parent is not listed is an error (it catches path typos).
-void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stage, Diagnostics& diag);
+// prim whose parent is neither listed nor mounted from a referenced asset is
+// an error (it catches path typos). A prim with `reference:` gets the
+// asset's prim tree; entries on it and below it override the asset's values.
+void readPrims(const RawNode& prims, const BehaviorCatalog& catalog, Stage& stage, Diagnostics& diag,
+               const PrimReferences& references = {});
 
 // True for "name" or "ns:name:more" with identifier components.
 bool isValidAttributeName(std::string_view name);

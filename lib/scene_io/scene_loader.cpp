@@ -1,11 +1,13 @@
 #include "scene_io/scene_loader.h"
 
 #include <filesystem>
+#include <memory>
 
 #include "core/text.h"
 #include "scene_io/map_reader.h"
 #include "scene_io/overrides.h"
 #include "scene_io/prim_reader.h"
+#include "scene_io/references.h"
 #include "scene_io/scene_validate.h"
 #include "scene_io/value_reader.h"
 
@@ -147,7 +149,13 @@ std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_vi
   return files;
 }
 
-Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::span<const std::string> overrides) {
+Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::span<const std::string> overrides,
+                 AssetLibrary* assets) {
+  std::unique_ptr<AssetLibrary> ownAssets;
+  if (!assets) {
+    ownAssets = std::make_unique<AssetLibrary>();
+    assets = ownAssets.get();
+  }
   Diagnostics diag;
   Scene scene;
   scene.sourcePath = doc.path;
@@ -194,7 +202,8 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
   }
   if (const RawNode* n = top.get("writer")) readWriters(*n, scene, diag);
   if (const RawNode* n = top.get("events")) readEvents(*n, scene, diag);
-  if (const RawNode* prims = top.require("prims")) readPrims(*prims, catalog, scene.stage, diag);
+  if (const RawNode* prims = top.require("prims"))
+    readPrims(*prims, catalog, scene.stage, diag, PrimReferences{assets, scene.sourceDir});
   top.finish();
 
   // Overrides apply to a scene that parsed; their own problems join the list.

@@ -32,9 +32,13 @@ struct DeclaredFile {
 // `key` is "plugins" or "scripts".
 std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_view key);
 
-// Builds the scene; throws SceneError listing every problem.
+class AssetLibrary;
+
+// Builds the scene; throws SceneError listing every problem. Prims with
+// `reference:` are mounted from `assets` (a library of this load; one is
+// made for the call when null).
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog,
-                 std::span<const std::string> overrides = {});
+                 std::span<const std::string> overrides = {}, AssetLibrary* assets = nullptr);
 
 Scene loadScene(const std::string& path, const BehaviorCatalog& catalog,
                 std::span<const std::string> overrides = {});

@@ -176,6 +176,12 @@ void removePrim(StageHandle& s, const std::string& path) {
   Prim* prim = stage.find(path);
   if (!prim) throw py::value_error("remove_prim: " + path + " does not exist");
   if (!ctx.created(*prim)) throw py::value_error("remove_prim: " + path + " was not created by " + ctx.ns());
+  // The journals key prims by address: forget the removed ones, so that a
+  // prim created later at the same address is not taken for this one.
+  for (Prim* p : stage.subtree(*prim)) {
+    ctx.playJournal.forget(*p);
+    ctx.idleJournal.forget(*p);
+  }
   stage.removePrim(path);
 }
 
@@ -349,20 +355,39 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
              setOpRotation(rotationOp(h), parent.transpose() * world);
            },
            py::arg("rotation"), "Gives the prim a world rotation (its parent's rotation compensated).")
+      .def("get_scale",
+           [](const PrimHandle& h) {
+             for (const XformOp& op : h.prim().xformOps()) {
+               if (op.kind == XformOpKind::Scale && op.suffix.empty()) return vec3ToPython(op.value.get<Vec3d>());
+               if (op.kind == XformOpKind::Transform) return vec3ToPython(decompose(op.value.get<Matrix4d>()).scale);
+             }
+             return vec3ToPython(Vec3d::Ones());
+           },
+           "The scale op's value (or a transform op's scale), (1, 1, 1) without one.")
       .def("set_scale",
            [](PrimHandle& h, py::handle s) {
              Vec3d scale = vec3FromPython(s, h.what("scale"));
+             if (scale.minCoeff() <= 0) throw py::value_error(h.what("scale") + ": every component must be > 0");
              Prim& p = h.prim();
              if (!p.typeInfo().xformable) throw py::value_error(h.path + " has no transform");
              if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
-             for (XformOp& op : p.xformOps())
+             // The first scale op, else the scale part of the first transform
+             // op, else a new scale op appended last (so it applies first).
+             for (XformOp& op : p.xformOps()) {
                if (op.kind == XformOpKind::Scale && op.suffix.empty()) {
                  op.value = Value::makeDouble3(scale);
                  return;
                }
+               if (op.kind == XformOpKind::Transform) {
+                 Decomposed d = decompose(op.value.get<Matrix4d>());
+                 op.value.get<Matrix4d>() = compose(d.translation, d.rotation, scale);
+                 return;
+               }
+             }
              p.xformOps().push_back(XformOp{XformOpKind::Scale, "", Value::makeDouble3(scale)});
            },
-           py::arg("scale"), "Writes xformOp:scale (appended last, so it applies first, when missing).")
+           py::arg("scale"), "Writes the scale into xformOp:scale (or a transform op), appending a scale op when "
+                             "there is neither.")
       .def("get_local_matrix", [](const PrimHandle& h) { return matrix4ToPython(h.prim().localMatrix()); },
            "4x4, column-vector convention (p_parent = M @ p).")
       .def("get_world_matrix",

@@ -52,6 +52,11 @@ void StageJournal::created(const Prim& prim) {
   createdPaths_.push_back(prim.path());
 }
 
+void StageJournal::forget(const Prim& prim) {
+  auto it = index_.find(&prim);
+  if (it != index_.end() && it->second == kCreatedHere) index_.erase(it);
+}
+
 bool StageJournal::createdHere(const Prim& prim) const {
   auto it = index_.find(&prim);
   return it != index_.end() && it->second == kCreatedHere;

@@ -24,6 +24,8 @@ class StageJournal {
   void beforeMaterialWrite(const Prim& prim);
   void created(const Prim& prim);
   bool createdHere(const Prim& prim) const;
+  // The prim is about to be removed by the script that created it.
+  void forget(const Prim& prim);
 
   // Restores every saved field, removes every created prim (newest first;
   // the scopes created to hold them are created prims too), and forgets.

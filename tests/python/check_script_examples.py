@@ -106,7 +106,7 @@ def inspect_stage(binary, scene):
             continue
         if not listing or not line.strip():
             continue
-        indent, text = len(line) - len(line.lstrip(" ")), line.strip()
+        indent, text = len(line) - len(line.lstrip(" ")), line.strip().split("  # ", 1)[0]
         if text.startswith("/"):
             path, type_name = text.split()[:2]
             current, behavior, detail = Prim(path, type_name), None, indent + 4

@@ -7,10 +7,10 @@ On every apply the prim is moved to
                          + sin(elevation) * up)
 
 with azimuth, elevation (degrees) and distance drawn uniformly, in that order,
-from their ranges; e1, e2, up are an orthonormal frame around `upAxis`
-(azimuth 0 is the world axis, X or else Y, that is least aligned with up,
-projected onto the ground plane; azimuth grows counter-clockwise seen from
-above). The prim is then turned so that its local -Z looks at the target
+from their ranges; e1, e2, up are an orthonormal frame around `upAxis`:
+azimuth 0 is world X projected onto the ground plane (world Y when up is
+within about 25 degrees of X), and azimuth grows counter-clockwise seen
+from above. The prim is then turned so that its local -Z looks at the target
 with +Y toward `upAxis` (a camera's convention), as lookAtBehavior does.
 
 The target is `targetPrimPath`'s world position when it is set, else the
@@ -28,7 +28,7 @@ Exposed variables (attributes exposedVar:cameraOrbit:<name>):
     interval        uint      0             apply every N updates; 0: every update
     seed            int       -1            -1 derives the stream from the run seed; >= 0 fixes it
 
-Example (scenes/examples/camera_orbit.yaml):
+Example (a whole scene: scenes/examples/camera_orbit.yaml):
 
     scripts: [scripts/camera_orbit.py]
     prims:

@@ -2,8 +2,8 @@
 files) through a box volume, with a random pose, size and colour each time.
 
 On the first play it creates `count` prims under
-/Behaviors/distractorScatter/ (named after their shape: Cube, Sphere_01,
-Mesh_02, ...), each drawn with rng.choice from the pool: the primitive
+/Behaviors/distractorScatter/ (named after their shape: Cube, Cube_01,
+Sphere, Mesh, ...), each drawn with rng.choice from the pool: the primitive
 shapes in `shapes` (or `shapes:csv` when that is set) followed by the mesh
 files in `assets`. Primitives are made one unit across (a Cube of size 1, a
 Sphere of radius 0.5, a Cylinder or Cone of radius 0.5 and height 1, a
@@ -16,10 +16,10 @@ in [range:minPosition, range:maxPosition] (per axis, relative to the
 attached prim's world position, axis-aligned; the attached prim's rotation
 and scale are ignored), three rotation angles in [range:minRotation,
 range:maxRotation] degrees (applied X, then Y, then Z, about world axes), a
-uniform scale in scaleRange (times assetScale for
-meshes), and, with randomColor, a display colour (r, g,
-b in 0 .. 1; meshes whose file has its own materials keep those). sdgbehave
-removes the distractors on stop by itself.
+uniform scale in scaleRange (times assetScale for meshes), and, with
+randomColor, a display colour (r, g, b in 0 .. 1; meshes whose file has its
+own materials keep those). sdgbehave removes the distractors on stop by
+itself.
 
 Exposed variables (attributes exposedVar:distractorScatter:<name>):
     count               uint      8                     distractors to create
@@ -37,7 +37,7 @@ Exposed variables (attributes exposedVar:distractorScatter:<name>):
     interval            uint      0                     apply every N updates; 0: every update
     seed                int       -1                    -1 derives the stream from the run seed; >= 0 fixes it
 
-Example (scenes/examples/distractor_scatter.yaml):
+Example (a whole scene: scenes/examples/distractor_scatter.yaml):
 
     scripts: [scripts/distractor_scatter.py]
     prims:

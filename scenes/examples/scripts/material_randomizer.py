@@ -22,7 +22,7 @@ Exposed variables (attributes exposedVar:materialRandomizer:<name>):
     interval         uint     0                   apply every N updates; 0: every update
     seed             int      -1                  -1 derives the stream from the run seed; >= 0 fixes it
 
-Example (scenes/examples/material_randomizer.yaml):
+Example (a whole scene: scenes/examples/material_randomizer.yaml):
 
     scripts: [scripts/material_randomizer.py]
     prims:

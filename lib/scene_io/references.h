@@ -1,0 +1,85 @@
+#pragma once
+// Smart assets: a prim's `reference:` mounts the prim tree of another scene
+// file (an asset) at the prim's path, with its types, meshes, materials,
+// labels, behaviors and exposed-variable values, as a USD reference does.
+// What the referencing scene writes on that prim and below is a local
+// override (readPrims applies it on top of the mounted tree).
+//
+// An asset is an ordinary scene file: it validates and renders on its own.
+// When referenced, its prims and its scripts are used; its render, capture,
+// writer, events and physics settings apply only when it runs on its own.
+// Relative paths inside an asset (meshes, textures, scripts, nested
+// references) resolve against the asset's own folder and asset_roots; on
+// mounting they are rewritten relative to the referencing file's folder, so
+// the flattened stage names the same files. Each asset file is read and
+// checked once per load, however often it is referenced; every mounted
+// value keeps its location in the asset, with "referenced from" the
+// referencing prim's `reference:`.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "scene_io/raw_node.h"
+#include "scene_io/scene_loader.h"
+#include "stage/behavior_spec.h"
+#include "stage/stage.h"
+
+namespace sdg {
+
+// Documented limit: references nested deeper than this are refused.
+inline constexpr size_t kMaxReferenceDepth = 32;
+
+// What a `reference:` names: `reference: assets/drill.yaml` or
+// `reference: {file: assets/drill.yaml, prim: /Drill}`.
+struct ReferenceSpec {
+  std::string file;  // as written, relative to the referencing file's folder
+  std::string prim;  // "" = the asset's first top-level prim
+  SourceLoc loc;     // the `reference:` value
+};
+std::optional<ReferenceSpec> readReferenceSpec(const RawNode& node, const std::string& what, Diagnostics& diag);
+
+class AssetLibrary {
+ public:
+  AssetLibrary();
+  ~AssetLibrary();
+  AssetLibrary(const AssetLibrary&) = delete;
+  AssetLibrary& operator=(const AssetLibrary&) = delete;
+
+  // Reads every asset `doc` references, recursively, and returns the
+  // scripts those assets declare (absolute paths, located), so that their
+  // behaviors can be registered before any prim is read. Cycles, nesting
+  // beyond kMaxReferenceDepth and missing files throw SceneError located at
+  // the reference (and the chain that led to it).
+  std::vector<DeclaredFile> preload(const SceneDocument& doc);
+
+  // Defines the referenced prim tree at `mountPath` (its parent exists, the
+  // path is free). `fromDir` is the referencing file's folder. Problems go
+  // to `diag`; a broken asset reports its own problems, referenced from
+  // `ref.loc`.
+  void mount(const ReferenceSpec& ref, const std::string& fromDir, const std::string& mountPath, Stage& stage,
+             const BehaviorCatalog& catalog, Diagnostics& diag);
+
+  // Every asset script loaded through preload (absolute, in load order).
+  const std::vector<std::string>& scripts() const { return scripts_; }
+  // How many asset files were read (each once).
+  size_t filesRead() const { return assets_.size(); }
+
+ private:
+  struct Asset;
+  Asset& document(const std::string& absolutePath, const SourceLoc& from);
+  void preloadFrom(const SceneDocument& doc, std::vector<std::string>& chain, const SourceLoc& via,
+                   std::vector<DeclaredFile>& scripts);
+  const Scene* built(Asset& asset, const BehaviorCatalog& catalog, const SourceLoc& from, Diagnostics& diag);
+
+  std::map<std::string, std::unique_ptr<Asset>> assets_;  // by absolute normalized path
+  std::vector<std::string> building_;                       // the chain being built, for cycles
+  std::vector<std::string> scripts_;
+};
+
+// `loc` with "referenced from `from`" appended to its chain.
+SourceLoc referencedFrom(const SourceLoc& loc, const SourceLoc& from);
+
+}  // namespace sdg
