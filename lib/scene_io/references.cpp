@@ -4,6 +4,7 @@
 #include <functional>
 
 #include "assets/asset_resolver.h"
+#include "core/log.h"
 #include "core/text.h"
 #include "scene_io/map_reader.h"
 #include "scene_io/value_reader.h"
@@ -144,6 +145,7 @@ AssetLibrary::Asset& AssetLibrary::document(const std::string& absolutePath, con
   asset->path = absolutePath;
   try {
     asset->doc = readSceneDocument(displayPath(absolutePath));
+    log::debug("reference: read " + asset->doc.path);
   } catch (const SceneError& e) {
     std::vector<Diagnostic> problems = e.problems();
     for (Diagnostic& d : problems) d.loc = referencedFrom(d.loc, from);

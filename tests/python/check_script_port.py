@@ -16,7 +16,10 @@ import subprocess
 import sys
 import tempfile
 
-SCENES = ["warehouse.yaml", "examples/location_randomizer.yaml", "examples/look_at.yaml"]
+# The demo as one flat file (scenes/warehouse.yaml keeps these behaviors in
+# its smart assets), and two examples.
+SCENES = ["tests/data/references/warehouse_flat.yaml", "scenes/examples/location_randomizer.yaml",
+          "scenes/examples/look_at.yaml"]
 SWAPS = {"locationRandomizer": "scriptedLocationRandomizer", "lookAtBehavior": "scriptedLookAtBehavior"}
 NOT_COMPARED = {"run_summary.json", "run.json"}
 
@@ -24,15 +27,19 @@ NOT_COMPARED = {"run_summary.json", "run.json"}
 def scripted_copy(source_dir, scene, folder):
     """The scene with the scripted behaviors swapped in, written to `folder`;
     its asset roots and scripts point back into the source tree."""
-    path = os.path.join(source_dir, "scenes", scene)
+    path = os.path.join(source_dir, scene)
     with open(path, encoding="utf-8") as f:
         text = f.read()
+    scene_dir = os.path.dirname(path)
+    roots = [scene_dir]
+    declared = re.search(r"^asset_roots: \[(.*)\]$", text, flags=re.M)
+    if declared:
+        roots += [os.path.normpath(os.path.join(scene_dir, r.strip())) for r in declared.group(1).split(",")]
     for builtin, scripted in SWAPS.items():
         text, n = re.subn(rf"(^\s+){builtin}:", rf"\g<1>{scripted}:", text, flags=re.M)
-    scene_dir = os.path.dirname(path)
     scripts = os.path.join(source_dir, "scenes", "examples", "scripts")
     text = re.sub(r"^asset_roots:.*$", "", text, flags=re.M)
-    header = (f"asset_roots: [{scene_dir}]\n"
+    header = (f"asset_roots: [{', '.join(roots)}]\n"
               f"scripts: [{scripts}/location_randomizer.py, {scripts}/look_at.py]\n")
     text = re.sub(r"^version: 1$", "version: 1\n" + header, text, count=1, flags=re.M)
     out = os.path.join(folder, "scripted_" + os.path.basename(scene))
@@ -66,7 +73,7 @@ def main():
             scripted = scripted_copy(source_dir, scene, tmp)
             stem = os.path.splitext(os.path.basename(scene))[0]
             a, b = os.path.join(tmp, stem + "_builtin"), os.path.join(tmp, stem + "_scripted")
-            run(binary, os.path.join(source_dir, "scenes", scene), a, a + ".jsonl")
+            run(binary, os.path.join(source_dir, scene), a, a + ".jsonl")
             run(binary, scripted, b, b + ".jsonl")
             names = files_under(a)
             if names != files_under(b):
