@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   cli::addVerify(app, exitCode);
   cli::addMerge(app, exitCode);
   cli::addNewBehavior(app, exitCode);
+  cli::addStudio(app, exitCode);
 
   // Logging must be configured before subcommand callbacks run.
   app.parse_complete_callback([&] {

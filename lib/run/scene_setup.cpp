@@ -126,7 +126,8 @@ std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const De
 }  // namespace
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {
-  SceneDocument doc = readSceneDocument(request.scenePath);
+  SceneDocument doc = request.sceneText ? sceneDocumentFromText(*request.sceneText, request.scenePath)
+                                        : readSceneDocument(request.scenePath);
   BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
   // The scene's own plugins and scripts load before its prims are read:
   // their behaviors must be known to check the prims. Paths are relative to

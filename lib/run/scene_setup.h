@@ -23,6 +23,9 @@ struct SceneRequest {
   std::vector<std::string> scripts = {};     // --script
   std::vector<std::string> assetRoots = {};  // --asset-root
   std::string isaacAssets = {};              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
+  // The scene's text when it is not read from scenePath (the studio's edits
+  // not saved yet); locations still name scenePath.
+  std::optional<std::string> sceneText = {};
 };
 
 struct LoadedScene {

@@ -20,10 +20,7 @@ std::string options(const OptionSet& set) {
 
 // Where a value comes from, as a trailing comment: its file:line:col (a
 // smart asset's, with the chain of references), a --set flag, or the default.
-std::string origin(const SourceLoc& loc) {
-  if (!loc.known()) return "  # default";
-  return "  # " + loc.str() + (loc.via ? ", " + loc.referenceChain() : std::string());
-}
+std::string origin(const SourceLoc& loc) { return "  # " + valueOrigin(loc); }
 
 void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) {
   std::string indent(2 * (path::depth(prim.path()) - 1), ' ');
@@ -55,6 +52,11 @@ void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) 
 }
 
 }  // namespace
+
+std::string valueOrigin(const SourceLoc& loc) {
+  if (!loc.known()) return "default";
+  return loc.str() + (loc.via ? ", " + loc.referenceChain() : std::string());
+}
 
 std::string inspectScene(const Scene& scene) {
   std::ostringstream out;

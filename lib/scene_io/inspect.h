@@ -7,6 +7,10 @@
 
 namespace sdg {
 
+// Where a value comes from, for people: "scene.yaml:12:5", with ", referenced
+// from ..." for values of smart assets, "--set[1]:1:19", or "default".
+std::string valueOrigin(const SourceLoc& loc);
+
 std::string inspectScene(const Scene& scene);
 
 }  // namespace sdg

@@ -1,0 +1,355 @@
+#include "studio/studio_session.h"
+
+#include <sys/stat.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "behavior/describe.h"
+#include "behavior/runtime.h"
+#include "core/file_io.h"
+#include "core/text.h"
+#include "render/render_list.h"
+#include "run/preroll.h"
+#include "scene_io/inspect.h"
+#include "stage/prim_types.h"
+#include "stage/stage_diff.h"
+#include "stage/value_json.h"
+#include "studio/yaml_text_edit.h"
+#include "writers/colors.h"
+#include "writers/png_encoder.h"
+#include "writers/semantics.h"
+
+namespace sdg::studio {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw StudioError(409, "cannot read " + path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int64_t stampOf(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return 0;
+  return int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec + int64_t(st.st_size);
+}
+
+Json specJson(const AttributeSpec& spec) {
+  Json j;
+  j["type"] = std::string(valueTypeName(spec.type));
+  j["default"] = valueToJson(spec.defaultValue);
+  j["doc"] = spec.doc;
+  if (spec.minimum) j["minimum"] = *spec.minimum;
+  if (!spec.allowedTokens.empty()) j["allowed"] = spec.allowedTokens;
+  if (spec.locked) j["locked"] = true;
+  if (spec.primPath) j["prim_path"] = true;
+  return j;
+}
+
+Json attributeJson(const std::string& name, const Attribute& a, const AttributeSpec* spec) {
+  Json j = spec ? specJson(*spec) : Json{{"type", std::string(valueTypeName(a.value.type()))}, {"doc", a.doc}};
+  j["name"] = name;
+  j["value"] = valueToJson(a.value);
+  j["origin"] = valueOrigin(a.loc);
+  return j;
+}
+
+// Blends `color` over the pixel at `i` (rgba), by `alpha` in [0, 1].
+void blend(std::vector<uint8_t>& rgba, size_t i, const std::array<uint8_t, 4>& color, float alpha) {
+  for (int c = 0; c < 3; ++c)
+    rgba[4 * i + size_t(c)] = uint8_t(float(rgba[4 * i + size_t(c)]) * (1 - alpha) + float(color[size_t(c)]) * alpha);
+}
+
+}  // namespace
+
+StudioSession::StudioSession(StudioOptions options) : options_(std::move(options)) {
+  diskText_ = readText(options_.scene.scenePath);
+  diskStamp_ = stampOf(options_.scene.scenePath);
+  load(diskText_);
+  seed_ = loaded_->scene.capture.getInt("seed");
+  runPreroll();
+}
+
+StudioSession::~StudioSession() = default;
+
+void StudioSession::load(const std::string& text) {
+  SceneRequest request = options_.scene;
+  request.sceneText = text;
+  loaded_ = std::make_unique<LoadedScene>(loadSceneForRun(request));
+  text_ = text;
+}
+
+void StudioSession::runPreroll() {
+  Stage stage = loaded_->scene.stage;
+  RunBehaviorSetup setup;
+  BehaviorContext context = behaviorContextFor(*loaded_, seed_, setup);
+  {
+    BehaviorRuntime runtime(stage, loaded_->registry, context);
+    runtime.init();
+    sdg::runPreroll(loaded_->scene.events, runtime);
+    afterPreroll_ = std::make_unique<Stage>(stage);  // before the runtime's destroy puts things back
+  }
+  settle_ = Json::array();
+  for (const auto& report : setup.reports) settle_.push_back(report);
+  prerollStale_ = false;
+}
+
+void StudioSession::checkFile() {
+  const int64_t stamp = stampOf(options_.scene.scenePath);
+  if (stamp == diskStamp_) return;
+  diskStamp_ = stamp;
+  std::string onDisk = readText(options_.scene.scenePath);
+  if (onDisk == diskText_) return;
+  if (text_ != diskText_) {
+    conflict_ = true;  // edits here and there: the user decides, nothing is overwritten
+    return;
+  }
+  diskText_ = onDisk;
+  try {
+    load(onDisk);
+    runPreroll();
+    reloadNote_ = "reloaded: the file changed on disk";
+  } catch (const SceneError& e) {
+    text_ = onDisk;
+    std::string messages;
+    for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
+    reloadNote_ = "the file changed on disk and does not load:\n" + messages;
+  }
+}
+
+Json StudioSession::state() {
+  Json j;
+  j["scene"] = options_.scene.scenePath;
+  j["unsaved"] = text_ != diskText_;
+  j["conflict"] = conflict_;
+  j["preroll_stale"] = prerollStale_;
+  j["seed"] = seed_;
+  j["frames"] = loaded_->scene.capture.getUInt("frames");
+  Json cameras = Json::array();
+  loaded_->scene.stage.traverse([&](const Prim& p) {
+    if (p.type() == PrimType::Camera) cameras.push_back(p.path());
+  });
+  j["cameras"] = cameras;
+  const auto& chosen = loaded_->scene.capture.get("cameras").get<std::vector<std::string>>();
+  j["camera"] = chosen.empty() ? (cameras.empty() ? Json(nullptr) : cameras.front()) : Json(chosen.front());
+  j["settle"] = settle_;
+  j["note"] = reloadNote_;
+  reloadNote_.clear();
+  return j;
+}
+
+Json StudioSession::tree() {
+  Json prims = Json::array();
+  const BehaviorCatalog& catalog = loaded_->registry.catalog();
+  loaded_->scene.stage.traverse([&](const Prim& p) {
+    Json prim;
+    prim["path"] = p.path();
+    prim["type"] = std::string(p.typeInfo().name);
+    prim["origin"] = valueOrigin(p.loc());
+    Json attributes = Json::array();
+    for (const auto& [name, a] : p.attributes())
+      if (!name.starts_with("exposedVar:")) attributes.push_back(attributeJson(name, a, findSchemaAttribute(p.type(), name)));
+    prim["attributes"] = attributes;
+    Json labels = Json::object();
+    for (const auto& [taxonomy, values] : p.semantics()) labels[taxonomy] = values;
+    prim["semantics"] = labels;
+    Json behaviors = Json::array();
+    for (const std::string& name : p.behaviors()) {
+      const BehaviorSpec* spec = catalog.find(name);
+      Json b;
+      b["name"] = name;
+      b["source"] = loaded_->registry.sourceOf(name);
+      b["driven_by"] = spec && spec->eventDriven ? "events" : "timeline";
+      Json vars = Json::array();
+      if (spec)
+        for (const AttributeSpec& var : spec->variables)
+          if (const Attribute* a = p.findAttribute(exposedAttributeName(name, var.name)))
+            vars.push_back(attributeJson(var.name, *a, &var));
+      b["variables"] = vars;
+      behaviors.push_back(b);
+    }
+    prim["behaviors"] = behaviors;
+    prims.push_back(prim);
+  });
+  return Json{{"prims", prims}};
+}
+
+Json StudioSession::behaviors() { return Json::parse(describeBehaviorsJson(loaded_->registry)); }
+
+Json StudioSession::edit(const std::string& prim, const std::vector<std::string>& keys, const std::string& jsonValue) {
+  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
+  if (!loaded_->scene.stage.find(prim)) throw StudioError(400, "no prim " + prim);
+  std::string yaml;
+  try {
+    yaml = yamlFlow(jsonValue);
+  } catch (const std::exception& e) {
+    throw StudioError(400, std::string("the value is not JSON: ") + e.what());
+  }
+  std::string edited;
+  try {
+    edited = applyTextEdit(text_, TextEdit{prim, keys, yaml});
+  } catch (const std::invalid_argument& e) {
+    throw StudioError(400, e.what());
+  }
+  // Checked as a scene: a bad value is refused and the text stays as it was.
+  SceneRequest request = options_.scene;
+  request.sceneText = edited;
+  std::unique_ptr<LoadedScene> candidate;
+  try {
+    candidate = std::make_unique<LoadedScene>(loadSceneForRun(request));
+  } catch (const SceneError& e) {
+    std::string messages;
+    for (const Diagnostic& d : e.problems()) messages += (messages.empty() ? "" : "\n") + d.format();
+    throw StudioError(400, messages);
+  }
+  // Carry what changed over to the stage after the pre-roll; what the
+  // pre-roll depends on makes it stale instead.
+  const BehaviorCatalog& catalog = candidate->registry.catalog();
+  Json changed = Json::array();
+  for (const StageChange& c : diffStages(loaded_->scene.stage, candidate->scene.stage)) {
+    changed.push_back(Json{{"prim", c.prim}, {"attribute", c.attribute}});
+    bool forPreroll = c.attribute == "prim";
+    if (c.attribute.starts_with("exposedVar:")) {
+      const size_t colon = c.attribute.find(':', 11);
+      const BehaviorSpec* spec = catalog.find(c.attribute.substr(11, colon - 11));
+      forPreroll = !spec || spec->eventDriven;
+    }
+    Prim* target = afterPreroll_->find(c.prim);
+    if (forPreroll || !target) {
+      prerollStale_ = true;
+      continue;
+    }
+    if (auto op = parseXformOpName(c.attribute)) {
+      auto it = std::find_if(target->xformOps().begin(), target->xformOps().end(),
+                             [&](const XformOp& o) { return o.attributeName() == c.attribute; });
+      if (it != target->xformOps().end() && c.value) it->value = *c.value;
+      else target->xformOps() = candidate->scene.stage.find(c.prim)->xformOps();
+    } else if (c.attribute == "material:binding") {
+      target->material() = candidate->scene.stage.find(c.prim)->material();
+    } else if (c.value) {
+      const Attribute* source = candidate->scene.stage.find(c.prim)->findAttribute(c.attribute);
+      target->setAttribute(c.attribute, *c.value, source && source->custom);
+    } else {
+      target->removeAttribute(c.attribute);
+    }
+  }
+  loaded_ = std::move(candidate);
+  text_ = std::move(edited);
+  return Json{{"changed", changed}, {"preroll_stale", prerollStale_}, {"unsaved", text_ != diskText_}};
+}
+
+void StudioSession::setSeed(int64_t seed) {
+  if (seed == seed_) return;
+  seed_ = seed;
+  prerollStale_ = true;
+}
+
+Json StudioSession::preroll() {
+  runPreroll();
+  return Json{{"settle", settle_}};
+}
+
+std::unique_ptr<Stage> StudioSession::stageAt(uint64_t frame, std::optional<Stage>* before) {
+  constexpr uint64_t kMaxPreviewFrame = 100000;
+  if (frame > kMaxPreviewFrame) throw StudioError(400, "frame must be at most " + std::to_string(kMaxPreviewFrame));
+  auto stage = std::make_unique<Stage>(*afterPreroll_);
+  RunBehaviorSetup setup;
+  BehaviorContext context = behaviorContextFor(*loaded_, seed_, setup);
+  BehaviorRuntime runtime(*stage, loaded_->registry, context);
+  runtime.init();
+  runtime.play();
+  for (uint64_t f = 0; f <= frame; ++f) {
+    if (before && f == frame) before->emplace(*stage);
+    runtime.update();
+  }
+  // The runtime's destroy restores its stage: hand back a copy of the frame.
+  auto result = std::make_unique<Stage>(*stage);
+  return result;
+}
+
+void StudioSession::ensureRenderer() {
+  if (!context_) context_ = glContextFor(loaded_->scene, options_.render);
+  if (renderer_ && rendererRoots_ == loaded_->assets.roots()) return;
+  renderer_.reset();
+  rendererAssets_ = loaded_->assets;
+  rendererRoots_ = loaded_->assets.roots();
+  renderer_ = std::make_unique<Renderer>(*context_, rendererAssets_, renderSettingsFor(loaded_->scene, options_.render));
+}
+
+std::vector<uint8_t> StudioSession::preview(uint64_t frame, const std::string& pass, const std::string& camera) {
+  static const std::vector<std::string> kPasses = {"rgb", "semantic", "instance", "depth", "boxes"};
+  if (std::find(kPasses.begin(), kPasses.end(), pass) == kPasses.end())
+    throw StudioError(400, "unknown pass '" + pass + "'; passes: " + text::join(kPasses, ", "));
+  std::unique_ptr<Stage> stage = stageAt(frame, nullptr);
+  RenderList list = buildRenderList(*stage);
+  size_t index = list.cameras.size();
+  for (size_t i = 0; i < list.cameras.size(); ++i)
+    if (list.cameras[i].path == camera || (camera.empty() && i == 0)) index = i;
+  if (index == list.cameras.size()) throw StudioError(400, "no camera " + camera);
+  ensureRenderer();
+  FramePasses frameBuffers;
+  renderer_->render(list, index, frameBuffers, pass == "rgb" ? PassSelection::colourOnly() : PassSelection{});
+  std::vector<uint8_t> rgba = frameBuffers.rgba;
+  const size_t pixels = frameBuffers.pixelCount();
+  if (pass == "depth") {
+    std::vector<uint8_t> grey = colorizeDistance(frameBuffers.distanceToImagePlane);
+    for (size_t i = 0; i < pixels; ++i) rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = grey[i];
+  } else if (pass != "rgb") {
+    FrameSemantics semantics = computeSemantics(*stage, list, {"class"});
+    struct Box {
+      int x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
+    };
+    std::vector<Box> boxes(semantics.entities.size());
+    for (size_t i = 0; i < pixels; ++i) {
+      const uint32_t id = frameBuffers.instanceIds[i];
+      const uint32_t entity = id < semantics.entityOfRenderId.size() ? semantics.entityOfRenderId[id] : 0;
+      if (entity == 0) continue;
+      const SemanticEntity& e = semantics.entities[entity - 1];
+      if (pass == "semantic") blend(rgba, i, idColor(e.semanticId), 0.6f);
+      if (pass == "instance") blend(rgba, i, idColor(e.instanceId), 0.6f);
+      Box& b = boxes[entity - 1];
+      const int x = int(i % size_t(frameBuffers.width)), y = int(i / size_t(frameBuffers.width));
+      b.x0 = std::min(b.x0, x), b.y0 = std::min(b.y0, y), b.x1 = std::max(b.x1, x), b.y1 = std::max(b.y1, y);
+    }
+    if (pass == "boxes")
+      for (size_t e = 0; e < boxes.size(); ++e) {
+        const Box& b = boxes[e];
+        if (b.x1 < 0) continue;
+        const auto color = idColor(semantics.entities[e].semanticId);
+        auto paint = [&](int x, int y) { blend(rgba, size_t(y) * size_t(frameBuffers.width) + size_t(x), color, 1.0f); };
+        for (int x = b.x0; x <= b.x1; ++x) paint(x, b.y0), paint(x, b.y1);
+        for (int y = b.y0; y <= b.y1; ++y) paint(b.x0, y), paint(b.x1, y);
+      }
+  }
+  return encodePng(rgba, uint32_t(frameBuffers.width), uint32_t(frameBuffers.height), PngPixels::Rgba8,
+                   PngOptions::renderedImage());
+}
+
+Json StudioSession::record(uint64_t frame) {
+  std::optional<Stage> before;
+  std::unique_ptr<Stage> after = stageAt(frame, &before);
+  Json changes = Json::array();
+  for (const StageChange& c : diffStages(*before, *after))
+    changes.push_back(Json{{"prim", c.prim}, {"attribute", c.attribute},
+                           {"value", c.value ? valueToJson(*c.value) : Json(nullptr)}});
+  return Json{{"frame", frame}, {"changes", changes}};
+}
+
+std::string StudioSession::diff() const { return lineDiff(diskText_, text_, options_.scene.scenePath); }
+
+Json StudioSession::save() {
+  checkFile();
+  if (conflict_) throw StudioError(409, options_.scene.scenePath + " changed on disk after it was loaded; saving "
+                                                                   "would overwrite those edits");
+  writeFileAtomic(options_.scene.scenePath, text_);
+  diskText_ = text_;
+  diskStamp_ = stampOf(options_.scene.scenePath);
+  return Json{{"saved", options_.scene.scenePath}};
+}
+
+}  // namespace sdg::studio

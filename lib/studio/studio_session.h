@@ -1,0 +1,85 @@
+#pragma once
+// The state behind `sdgbehave studio`: the scene's text with the edits not
+// saved yet, the loaded scene, the stage after the pre-roll, and a renderer.
+// An edit is a change of the text (studio/yaml_text_edit.h), checked by
+// loading it like any scene; a change that only touches the timeline is
+// carried over to the stage after the pre-roll, so the preview updates
+// without stacking again (changes to event-driven behaviors mark the
+// pre-roll stale until preroll() runs). Not thread-safe: the server runs
+// every call on one thread (the one that owns the GL context and Python).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/gl_context.h"
+#include "render/renderer.h"
+#include "run/scene_setup.h"
+
+namespace sdg::studio {
+
+// A request the page got wrong: the server answers 400 (409 for conflicts).
+struct StudioError : std::runtime_error {
+  StudioError(int status, const std::string& message) : std::runtime_error(message), status(status) {}
+  int status;
+};
+
+struct StudioOptions {
+  SceneRequest scene;
+  RenderOverrides render;
+};
+
+class StudioSession {
+ public:
+  // Loads the scene (SceneError for an invalid one) and plays its pre-roll.
+  explicit StudioSession(StudioOptions options);
+  ~StudioSession();
+
+  nlohmann::ordered_json state();
+  // The prim tree with every prim's attributes and behaviors (each variable
+  // with its type, value, default, doc, bounds and origin).
+  nlohmann::ordered_json tree();
+  nlohmann::ordered_json behaviors();
+  // Sets prim.keys (["size"] or ["behaviors", ns, variable]) to a JSON value.
+  nlohmann::ordered_json edit(const std::string& prim, const std::vector<std::string>& keys,
+                              const std::string& jsonValue);
+  // The camera's picture of frame `frame` (0-based: after frame + 1 updates):
+  // pass rgb, semantic, instance, depth or boxes. PNG bytes.
+  std::vector<uint8_t> preview(uint64_t frame, const std::string& pass, const std::string& camera);
+  // What each behavior changed in that frame.
+  nlohmann::ordered_json record(uint64_t frame);
+  nlohmann::ordered_json preroll();
+  void setSeed(int64_t seed);
+  std::string diff() const;
+  nlohmann::ordered_json save();
+  // Picks up edits made to the file on disk (reloads when nothing is
+  // unsaved here, else reports a conflict). Called before every request.
+  void checkFile();
+
+ private:
+  void load(const std::string& text);
+  void runPreroll();
+  std::unique_ptr<Stage> stageAt(uint64_t frame, std::optional<Stage>* before);
+  void ensureRenderer();
+
+  StudioOptions options_;
+  std::string diskText_;  // the file as last read or saved
+  std::string text_;      // with the edits
+  int64_t diskStamp_ = 0;
+  std::unique_ptr<LoadedScene> loaded_;
+  std::unique_ptr<Stage> afterPreroll_;
+  nlohmann::ordered_json settle_ = nlohmann::ordered_json::array();
+  int64_t seed_ = 0;
+  bool prerollStale_ = false;
+  bool conflict_ = false;
+  std::string reloadNote_;
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<Renderer> renderer_;
+  std::vector<std::string> rendererRoots_;
+  AssetResolver rendererAssets_;
+};
+
+}  // namespace sdg::studio

@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""`sdgbehave studio`'s JSON API, without a browser: the access token, the
+Host and Origin checks and '..' paths are enforced; bad requests get 4xx
+and never kill the server; an edit updates the tree, the record and the
+preview; save writes the value into the YAML keeping comments and layout,
+inserts new keys in the mapping's style, turns an edit of a referenced
+asset's value into a local override and leaves the asset file alone; an
+edit made on disk is picked up, and one that clashes with unsaved edits is
+a conflict that save refuses.
+
+usage: check_studio_api.py SDGBEHAVE SOURCE_DIR"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+from checklib import check, finish
+from studio_server import Studio
+
+
+def main():
+    binary, root = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+    with tempfile.TemporaryDirectory() as tmp:
+        scene = os.path.join(tmp, "scene.yaml")
+        shutil.copy(os.path.join(root, "scenes/examples/location_randomizer.yaml"), scene)
+        original = open(scene).read()
+        studio = Studio(binary, scene)
+        try:
+            # Safety: token, Host, Origin, '..'.
+            status, _ = studio.request("/api/state", token=False)
+            check(status == 403, f"no token: {status}")
+            status, _ = studio.request("/api/state", headers={"Origin": "http://evil.example"})
+            check(status == 403, f"foreign Origin: {status}")
+            status, _ = studio.request("/api/state", headers={"Host": "evil.example:80"})
+            check(status == 421, f"foreign Host: {status}")
+            status, _ = studio.request("/api/../../etc/passwd")
+            check(status in (400, 404), f"'..' path: {status}")
+            status, page = studio.request("/")
+            check(status == 200 and "sdgbehave studio" in page, "the page")
+            # Bad requests: 4xx, the server lives on.
+            for path, body in (("/api/edit", b"{not json"), ("/api/edit", {"prim": "/Nope", "keys": ["size"], "value": 1}),
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["size"], "value": -1}),
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["size"], "value": "big"}),
+                               ("/api/edit", {"prim": "/World/Box"}), ("/api/seed", {"seed": "x"}),
+                               ("/api/preview?pass=xray", None), ("/api/preview?frame=-1", None),
+                               ("/api/record?frame=1e9", None), ("/api/nothing", None)):
+                status, answer = studio.request(path, body)
+                check(400 <= status < 500 and "error" in answer, f"{path} {body}: {status} {answer}")
+            check(studio.alive(), "the server died of a bad request")
+            status, diff = studio.request("/api/diff")
+            check("+" not in diff.split("\n", 2)[-1], f"refused edits changed the text:\n{diff}")
+
+            # An edit: tree, record and preview follow.
+            _, before = studio.request("/api/preview?frame=1", raw=True)
+            status, answer = studio.request("/api/edit", {"prim": "/World/Box",
+                                                          "keys": ["behaviors", "locationRandomizer", "range:maxPosition"],
+                                                          "value": [3, 3, 0]})
+            check(status == 200 and not answer["preroll_stale"], f"edit: {status} {answer}")
+            _, tree = studio.request("/api/tree")
+            box = next(p for p in tree["prims"] if p["path"] == "/World/Box")
+            var = next(v for v in box["behaviors"][0]["variables"] if v["name"] == "range:maxPosition")
+            check(var["value"] == [3.0, 3.0, 0.0] and "scene.yaml" in var["origin"], f"tree after edit: {var}")
+            _, after = studio.request("/api/preview?frame=1", raw=True)
+            check(after[:8] == b"\x89PNG\r\n\x1a\n" and after != before, "the preview did not change")
+            _, record = studio.request("/api/record?frame=1")
+            check(any(c["prim"] == "/World/Box" for c in record["changes"]), f"record: {record}")
+            # A variable the file does not set goes into its flow mapping.
+            status, _ = studio.request("/api/edit", {"prim": "/World/Box", "keys": ["behaviors", "locationRandomizer", "seed"],
+                                                     "value": 7})
+            check(status == 200, f"new key: {status}")
+            status, answer = studio.request("/api/save", {})
+            check(status == 200, f"save: {status} {answer}")
+            saved = open(scene).read()
+            check("range:maxPosition: [3, 3, 0]" in saved and "seed: 7}" in saved, f"saved text:\n{saved}")
+            kept = [l for l in original.splitlines() if "locationRandomizer: {interval: 2" not in l]
+            check(all(l in saved.splitlines() for l in kept), "save changed lines it did not edit (comments, order)")
+            check(subprocess.run([binary, "validate", scene], capture_output=True).returncode == 0, "saved file invalid")
+
+            # Edited on disk while nothing is unsaved: picked up.
+            time.sleep(0.05)
+            open(scene, "w").write(saved.replace("radius: 0.2", "radius: 0.3"))
+            _, state = studio.request("/api/state")
+            _, tree = studio.request("/api/tree")
+            ball = next(p for p in tree["prims"] if p["path"] == "/World/Ball")
+            check(any(a["name"] == "radius" and a["value"] == 0.3 for a in ball["attributes"]), "disk edit not picked up")
+            # Unsaved edit here + edit on disk: a conflict, and save refuses.
+            studio.request("/api/edit", {"prim": "/World/Ball", "keys": ["radius"], "value": 0.25})
+            time.sleep(0.05)
+            open(scene, "a").write("# edited in an editor\n")
+            _, state = studio.request("/api/state")
+            check(state["conflict"], f"no conflict reported: {state}")
+            status, _ = studio.request("/api/save", {})
+            check(status == 409, f"save during a conflict: {status}")
+            check(open(scene).read().endswith("# edited in an editor\n"), "the file on disk was overwritten")
+        finally:
+            check(studio.stop() == 0, "the server did not stop cleanly on SIGTERM")
+
+        # A referenced asset's values: edits become local overrides.
+        shutil.copytree(os.path.join(root, "tests/data/references/lib"), os.path.join(tmp, "lib"))
+        refscene = os.path.join(tmp, "ref.yaml")
+        open(refscene, "w").write("# A scene with a smart asset.\nversion: 1\nprims:\n  /World: {}\n"
+                                  "  /World/Plain: {reference: lib/box.yaml}\n")
+        asset_before = open(os.path.join(tmp, "lib/box.yaml")).read()
+        studio = Studio(binary, refscene)
+        try:
+            for prim, keys, value in (("/World/Plain", ["behaviors", "bob", "amplitude"], 0.4),
+                                      ("/World/Plain/Marker", ["radius"], 0.09)):
+                status, answer = studio.request("/api/edit", {"prim": prim, "keys": keys, "value": value})
+                check(status == 200, f"override {prim}: {status} {answer}")
+            status, _ = studio.request("/api/save", {})
+            text = open(refscene).read()
+            check("/World/Plain: {reference: lib/box.yaml, behaviors: {bob: {amplitude: 0.4}}}" in text
+                  and "/World/Plain/Marker: {radius: 0.09}" in text, f"overrides written:\n{text}")
+            check(open(os.path.join(tmp, "lib/box.yaml")).read() == asset_before, "the asset file was written")
+            check(subprocess.run([binary, "validate", refscene], capture_output=True).returncode == 0, "override invalid")
+        finally:
+            studio.stop()
+    return finish("token, Host, Origin, '..'; 4xx without dying; edit -> tree, record, preview; save keeps the file; "
+                  "disk edits and conflicts; asset overrides")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
