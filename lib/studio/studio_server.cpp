@@ -233,6 +233,17 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     const std::string value = body["value"].dump();
     sendJson(res, session.call([&](StudioSession& s) { return s.edit(prim, keys, value); }));
   }));
+  server.Post("/api/behavior", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    Json body = parseBody(req);
+    if (!body.contains("prim") || !body["prim"].is_string() || !body.contains("behavior") ||
+        !body["behavior"].is_string() || !body.contains("action") || !body["action"].is_string())
+      throw StudioError(400, "expected {\"prim\": PATH, \"behavior\": NAME, \"action\": \"attach\" | \"detach\"}");
+    const std::string prim = body["prim"], behavior = body["behavior"], action = body["action"];
+    if (action != "attach" && action != "detach") throw StudioError(400, "action is attach or detach, found " + action);
+    sendJson(res, session.call([&](StudioSession& s) {
+      return action == "attach" ? s.attach(prim, behavior) : s.detach(prim, behavior);
+    }));
+  }));
   server.Get("/api/preview", guarded([&](const httplib::Request& req, httplib::Response& res) {
     const uint64_t frame = frameParam(req);
     const std::string pass = req.has_param("pass") ? req.get_param_value("pass") : "rgb";

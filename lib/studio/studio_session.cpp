@@ -197,16 +197,7 @@ Json StudioSession::edit(const std::string& prim, const std::vector<std::string>
     throw StudioError(400, e.what());
   }
   // Checked as a scene: a bad value is refused and the text stays as it was.
-  SceneRequest request = options_.scene;
-  request.sceneText = edited;
-  std::unique_ptr<LoadedScene> candidate;
-  try {
-    candidate = std::make_unique<LoadedScene>(loadSceneForRun(request));
-  } catch (const SceneError& e) {
-    std::string messages;
-    for (const Diagnostic& d : e.problems()) messages += (messages.empty() ? "" : "\n") + d.format();
-    throw StudioError(400, messages);
-  }
+  std::unique_ptr<LoadedScene> candidate = check(edited);
   // Carry what changed over to the stage after the pre-roll; what the
   // pre-roll depends on makes it stale instead.
   const BehaviorCatalog& catalog = candidate->registry.catalog();
@@ -241,6 +232,67 @@ Json StudioSession::edit(const std::string& prim, const std::vector<std::string>
   loaded_ = std::move(candidate);
   text_ = std::move(edited);
   return Json{{"changed", changed}, {"preroll_stale", prerollStale_}, {"unsaved", text_ != diskText_}};
+}
+
+std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited) {
+  SceneRequest request = options_.scene;
+  request.sceneText = edited;
+  try {
+    return std::make_unique<LoadedScene>(loadSceneForRun(request));
+  } catch (const SceneError& e) {
+    std::string messages;
+    for (const Diagnostic& d : e.problems()) messages += (messages.empty() ? "" : "\n") + d.format();
+    throw StudioError(400, messages);
+  }
+}
+
+Json StudioSession::attach(const std::string& prim, const std::string& behavior) {
+  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
+  const Prim* p = loaded_->scene.stage.find(prim);
+  if (!p) throw StudioError(400, "no prim " + prim);
+  if (!loaded_->registry.catalog().find(behavior)) throw StudioError(400, "no behavior " + behavior);
+  if (std::find(p->behaviors().begin(), p->behaviors().end(), behavior) != p->behaviors().end())
+    throw StudioError(400, prim + " has " + behavior + " already");
+  // A behavior switched off here (enabled: false) is switched on by removing that.
+  std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
+  std::unique_ptr<LoadedScene> candidate = check(edited);
+  const Prim* q = candidate->scene.stage.find(prim);
+  if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) == q->behaviors().end()) {
+    try {
+      edited = applyTextEdit(edited, TextEdit{prim, {"behaviors", behavior}, "{}"});
+    } catch (const std::invalid_argument& e) {
+      throw StudioError(400, e.what());
+    }
+    candidate = check(edited);
+  }
+  loaded_ = std::move(candidate);
+  text_ = std::move(edited);
+  runPreroll();
+  return Json{{"attached", behavior}, {"unsaved", text_ != diskText_}};
+}
+
+Json StudioSession::detach(const std::string& prim, const std::string& behavior) {
+  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
+  const Prim* p = loaded_->scene.stage.find(prim);
+  if (!p) throw StudioError(400, "no prim " + prim);
+  if (std::find(p->behaviors().begin(), p->behaviors().end(), behavior) == p->behaviors().end())
+    throw StudioError(400, prim + " has no behavior " + behavior);
+  std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
+  std::unique_ptr<LoadedScene> candidate = check(edited);
+  const Prim* q = candidate->scene.stage.find(prim);
+  if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) != q->behaviors().end()) {
+    // Still there: a referenced asset attaches it. Switch it off locally.
+    try {
+      edited = applyTextEdit(edited, TextEdit{prim, {"behaviors", behavior}, "{enabled: false}"});
+    } catch (const std::invalid_argument& e) {
+      throw StudioError(400, e.what());
+    }
+    candidate = check(edited);
+  }
+  loaded_ = std::move(candidate);
+  text_ = std::move(edited);
+  runPreroll();
+  return Json{{"detached", behavior}, {"unsaved", text_ != diskText_}};
 }
 
 void StudioSession::setSeed(int64_t seed) {

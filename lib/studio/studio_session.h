@@ -46,6 +46,10 @@ class StudioSession {
   // Sets prim.keys (["size"] or ["behaviors", ns, variable]) to a JSON value.
   nlohmann::ordered_json edit(const std::string& prim, const std::vector<std::string>& keys,
                               const std::string& jsonValue);
+  // Attaches or detaches a behavior (detaching one a referenced asset
+  // brings writes `enabled: false`); the pre-roll runs again.
+  nlohmann::ordered_json attach(const std::string& prim, const std::string& behavior);
+  nlohmann::ordered_json detach(const std::string& prim, const std::string& behavior);
   // The camera's picture of frame `frame` (0-based: after frame + 1 updates):
   // pass rgb, semantic, instance, depth or boxes. PNG bytes.
   std::vector<uint8_t> preview(uint64_t frame, const std::string& pass, const std::string& camera);
@@ -61,6 +65,9 @@ class StudioSession {
 
  private:
   void load(const std::string& text);
+  // Loads `edited` as the scene (StudioError 400 with the loader's messages
+  // when it does not load; nothing changes then).
+  std::unique_ptr<LoadedScene> check(const std::string& edited);
   void runPreroll();
   std::unique_ptr<Stage> stageAt(uint64_t frame, std::optional<Stage>* before);
   void ensureRenderer();

@@ -179,6 +179,61 @@ std::string applyTextEdit(const std::string& text, const TextEdit& edit) {
   return text.substr(0, at) + edit.yaml + text.substr(end);
 }
 
+std::string removeTextKey(const std::string& text, const std::string& prim, const std::vector<std::string>& keys) {
+  SceneDocument doc = sceneDocumentFromText(text, "studio-edit");
+  const std::vector<size_t> starts = lineStarts(text);
+  const RawNode* prims = doc.root.isMap() ? doc.root.find("prims") : nullptr;
+  if (!prims || !prims->isMap() || keys.empty()) return text;
+  const RawNode* map = nullptr;
+  for (const RawEntry& e : prims->entries)
+    if (e.key.scalar == prim) map = &e.value;
+  bool inFlow = false;
+  for (size_t k = 0; map && k + 1 < keys.size(); ++k) {
+    if (!map->isMap()) return text;
+    inFlow = inFlow || isFlowAt(text, offsetOf(starts, map->loc));
+    const RawNode* next = nullptr;
+    for (const RawEntry& e : map->entries)
+      if (e.key.scalar == keys[k]) next = &e.value;
+    map = next;
+  }
+  if (!map || !map->isMap()) return text;
+  const size_t mapAt = offsetOf(starts, map->loc);
+  const bool flow = inFlow || isFlowAt(text, mapAt);
+  for (size_t i = 0; i < map->entries.size(); ++i) {
+    const RawEntry& e = map->entries[i];
+    if (e.key.scalar != keys.back()) continue;
+    size_t from = offsetOf(starts, e.key.loc);
+    if (flow) {
+      size_t valueAt = e.value.isNull() ? from + e.key.scalar.size() + 1 : offsetOf(starts, e.value.loc);
+      size_t to = e.value.isNull() ? valueAt : valueEnd(text, valueAt, true);
+      // Take the comma after it, else the one before it.
+      size_t after = text.find_first_not_of(" ", to);
+      if (after != std::string::npos && text[after] == ',') {
+        to = text.find_first_not_of(" ", after + 1);
+      } else {
+        size_t before = text.find_last_not_of(" ", from - 1);
+        if (before != std::string::npos && text[before] == ',') from = before;
+      }
+      return text.substr(0, from) + text.substr(to);
+    }
+    // Block: the key's line through the last line indented more than it.
+    const size_t line = size_t(e.key.loc.line);
+    const size_t indent = size_t(e.key.loc.column - 1);
+    size_t endLine = line + 1;
+    while (endLine <= starts.size()) {
+      size_t s = starts[endLine - 1];
+      size_t eol = text.find('\n', s);
+      std::string content = text.substr(s, (eol == std::string::npos ? text.size() : eol) - s);
+      if (content.find_first_not_of(" \t\r") != std::string::npos && indentOf(text, s) <= indent) break;
+      ++endLine;
+    }
+    size_t begin = starts[line - 1];
+    size_t end = endLine <= starts.size() ? starts[endLine - 1] : text.size();
+    return text.substr(0, begin) + text.substr(end);
+  }
+  return text;
+}
+
 std::string yamlFlow(const std::string& json) {
   nlohmann::json j = nlohmann::json::parse(json);
   std::function<std::string(const nlohmann::json&)> emit = [&](const nlohmann::json& v) -> std::string {

@@ -23,6 +23,11 @@ struct TextEdit {
 // no `prims:` mapping or the place cannot be edited (e.g. an alias).
 std::string applyTextEdit(const std::string& text, const TextEdit& edit);
 
+// Removes prim.keys (e.g. ["behaviors", "rotationRandomizer"]) where the text
+// writes it: a flow entry with its comma, a block entry with its lines.
+// The text unchanged when it is not written there.
+std::string removeTextKey(const std::string& text, const std::string& prim, const std::vector<std::string>& keys);
+
 // A JSON value (from the page) as YAML flow text: numbers, true/false,
 // double-quoted strings, [a, b] lists.
 std::string yamlFlow(const std::string& json);

@@ -97,6 +97,32 @@ def main():
         finally:
             check(studio.stop() == 0, "the server did not stop cleanly on SIGTERM")
 
+        # Attach and detach: written into the file, the pre-roll runs again.
+        plain = os.path.join(tmp, "attach.yaml")
+        shutil.copy(os.path.join(root, "scenes/examples/location_randomizer.yaml"), plain)
+        studio = Studio(binary, plain)
+        try:
+            status, answer = studio.request("/api/behavior", {"prim": "/World/Box", "behavior": "rotationRandomizer",
+                                                              "action": "attach"})
+            check(status == 200, f"attach: {status} {answer}")
+            status, answer = studio.request("/api/behavior", {"prim": "/World/Box", "behavior": "rotationRandomizer",
+                                                              "action": "attach"})
+            check(status == 400, f"attaching twice: {status}")
+            status, answer = studio.request("/api/behavior", {"prim": "/World/Box", "behavior": "locationRandomizer",
+                                                              "action": "detach"})
+            check(status == 200, f"detach: {status} {answer}")
+            status, _ = studio.request("/api/behavior", {"prim": "/World/Box", "behavior": "nope", "action": "attach"})
+            check(status == 400, f"unknown behavior: {status}")
+            _, tree = studio.request("/api/tree")
+            box = next(p for p in tree["prims"] if p["path"] == "/World/Box")
+            check([b["name"] for b in box["behaviors"]] == ["rotationRandomizer"], f"behaviors: {box['behaviors']}")
+            studio.request("/api/save", {})
+            text = open(plain).read()
+            check("rotationRandomizer: {}" in text and "interval: 2, range:minPosition: [-1, -1, 0]" not in text,
+                  f"attach/detach written:\n{text}")
+        finally:
+            studio.stop()
+
         # A referenced asset's values: edits become local overrides.
         shutil.copytree(os.path.join(root, "tests/data/references/lib"), os.path.join(tmp, "lib"))
         refscene = os.path.join(tmp, "ref.yaml")
@@ -109,10 +135,15 @@ def main():
                                       ("/World/Plain/Marker", ["radius"], 0.09)):
                 status, answer = studio.request("/api/edit", {"prim": prim, "keys": keys, "value": value})
                 check(status == 200, f"override {prim}: {status} {answer}")
+            # Detaching what the asset attaches switches it off locally.
+            status, answer = studio.request("/api/behavior", {"prim": "/World/Plain/Marker",
+                                                              "behavior": "locationRandomizer", "action": "detach"})
+            check(status == 200, f"detach an asset's behavior: {status} {answer}")
             status, _ = studio.request("/api/save", {})
             text = open(refscene).read()
             check("/World/Plain: {reference: lib/box.yaml, behaviors: {bob: {amplitude: 0.4}}}" in text
-                  and "/World/Plain/Marker: {radius: 0.09}" in text, f"overrides written:\n{text}")
+                  and "/World/Plain/Marker: {radius: 0.09, behaviors: {locationRandomizer: {enabled: false}}}" in text,
+                  f"overrides written:\n{text}")
             check(open(os.path.join(tmp, "lib/box.yaml")).read() == asset_before, "the asset file was written")
             check(subprocess.run([binary, "validate", refscene], capture_output=True).returncode == 0, "override invalid")
         finally:

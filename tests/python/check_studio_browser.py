@@ -3,7 +3,8 @@
 chromium-driver and python3-selenium): the prim tree loads; selecting a prim
 shows its behaviors' variables as typed fields with their docs; changing
 one re-renders the preview (its pixels change) and the frame record shows
-the new value; Save writes it into the YAML with the comments kept; an edit
+the new value; behaviors are attached, swapped and detached from the list;
+Save writes it into the YAML with the comments kept; an edit
 made in an editor shows up in the page. Exits 77 (skipped) when chromium
 or its driver cannot start here.
 
@@ -93,6 +94,20 @@ def main():
             time.sleep(0.3)
             after = preview.screenshot_as_png
             check(after != before, "the preview's pixels did not change after the edit")
+            # Attach a behavior from the registry's list, then swap it for another.
+            from selenium.webdriver.support.ui import Select
+            Select(driver.find_element(By.ID, "attachChoice")).select_by_value("rotationRandomizer")
+            driver.find_element(By.ID, "attachButton").click()
+            wait_for(lambda: driver.find_elements(By.CSS_SELECTOR, "button[data-detach='rotationRandomizer']"),
+                     "the attached behavior's section")
+            Select(driver.find_element(By.ID, "attachChoice")).select_by_value("lightRandomizer")
+            Select(driver.find_element(By.ID, "swapFrom")).select_by_value("rotationRandomizer")
+            driver.find_element(By.ID, "attachButton").click()
+            wait_for(lambda: driver.find_elements(By.CSS_SELECTOR, "button[data-detach='lightRandomizer']") and not
+                     driver.find_elements(By.CSS_SELECTOR, "button[data-detach='rotationRandomizer']"), "the swap")
+            driver.find_element(By.CSS_SELECTOR, "button[data-detach='lightRandomizer']").click()
+            wait_for(lambda: not driver.find_elements(By.CSS_SELECTOR, "button[data-detach='lightRandomizer']"),
+                     "the detach")
             # Save, accepting the diff the page shows first.
             driver.find_element(By.ID, "saveButton").click()
             alert = wait_for(lambda: driver.switch_to.alert, "the diff before saving")

@@ -64,3 +64,14 @@ TEST_CASE("studio text edit: JSON values as YAML flow, and a line diff", "[studi
   std::string diff = lineDiff("a\nb\nc\n", "a\nB\nc\n", "s.yaml");
   CHECK(diff.find("-b\n+B\n") != std::string::npos);
 }
+
+TEST_CASE("studio text edit: a key is removed with its comma or its lines", "[studio]") {
+  std::string out = removeTextKey(kScene, "/World/Box", {"behaviors", "locationRandomizer"});
+  CHECK(out.find("    behaviors:\n      rotationRandomizer:\n") != std::string::npos);
+  CHECK(out.find("interval: 2") == std::string::npos);
+  out = removeTextKey(kScene, "/World/Sun", {"inputs:intensity"});
+  CHECK(out.find("  /World/Sun: {type: DistantLight}\n") != std::string::npos);
+  out = removeTextKey(kScene, "/World/Sun", {"type"});
+  CHECK(out.find("  /World/Sun: {inputs:intensity: 3000}\n") != std::string::npos);
+  CHECK(removeTextKey(kScene, "/World/Box", {"behaviors", "lookAtBehavior"}) == kScene);
+}
