@@ -12,6 +12,7 @@
 
 #include "core/diagnostics.h"
 #include "core/log.h"
+#include "studio/render_job.h"
 
 // The page, compiled in (lib/studio/page/index.html).
 extern const char kStudioPage[];
@@ -165,6 +166,7 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
   SessionThread session(studio);  // loads the scene: SceneError before anything listens
   const std::string token = options.token.empty() ? randomToken() : options.token;
 
+  RenderJob render;  // destroyed after the server: a waiting render outlives no handler
   httplib::Server server;
   int port = options.port;
   std::vector<std::string> hosts = {options.host};
@@ -215,6 +217,10 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
   }));
   server.Get("/api/behaviors", guarded([&](const httplib::Request&, httplib::Response& res) {
     sendJson(res, session.call([](StudioSession& s) { return s.behaviors(); }));
+  }));
+  server.Get("/api/files", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    const std::string kind = req.has_param("kind") ? req.get_param_value("kind") : "";
+    sendJson(res, session.call([&](StudioSession& s) { return s.files(kind); }));
   }));
   server.Get("/api/diff", guarded([&](const httplib::Request&, httplib::Response& res) {
     res.set_content(session.call([](StudioSession& s) { return s.diff(); }), "text/plain; charset=utf-8");
@@ -268,6 +274,20 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
       return 0;
     });
     sendJson(res, Json{{"seed", seed}});
+  }));
+  server.Post("/api/render", guarded([&](const httplib::Request& req, httplib::Response& res) {
+    Json body = parseBody(req);
+    if (!body.contains("frames") || !body["frames"].is_number_unsigned() || !body.contains("name") ||
+        !body["name"].is_string())
+      throw StudioError(400, "expected {\"frames\": N, \"name\": FOLDER_NAME}");
+    auto [text, flags] = session.call([](StudioSession& s) { return std::make_pair(s.text(), s.runFlags()); });
+    render.start(studio.scene.scenePath, text, body["frames"].get<uint64_t>(), body["name"].get<std::string>(), flags);
+    sendJson(res, render.status());
+  }));
+  server.Get("/api/render", guarded([&](const httplib::Request&, httplib::Response& res) { sendJson(res, render.status()); }));
+  server.Get("/api/render/contact_sheet", guarded([&](const httplib::Request&, httplib::Response& res) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(render.contactSheet(), "image/png");
   }));
   server.Post("/api/save", guarded([&](const httplib::Request&, httplib::Response& res) {
     sendJson(res, session.call([](StudioSession& s) { return s.save(); }));

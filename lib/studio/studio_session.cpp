@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -48,6 +49,8 @@ Json specJson(const AttributeSpec& spec) {
   if (!spec.allowedTokens.empty()) j["allowed"] = spec.allowedTokens;
   if (spec.locked) j["locked"] = true;
   if (spec.primPath) j["prim_path"] = true;
+  if (spec.files == FileKind::Mesh) j["files"] = "mesh";
+  if (spec.files == FileKind::Image) j["files"] = "image";
   return j;
 }
 
@@ -390,6 +393,41 @@ Json StudioSession::record(uint64_t frame) {
     changes.push_back(Json{{"prim", c.prim}, {"attribute", c.attribute},
                            {"value", c.value ? valueToJson(*c.value) : Json(nullptr)}});
   return Json{{"frame", frame}, {"changes", changes}};
+}
+
+Json StudioSession::files(const std::string& kind) const {
+  namespace fs = std::filesystem;
+  static const std::vector<std::string> kMesh = {".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae"};
+  static const std::vector<std::string> kImage = {".png"};
+  if (kind != "mesh" && kind != "image") throw StudioError(400, "kind is mesh or image, found '" + kind + "'");
+  const std::vector<std::string>& extensions = kind == "mesh" ? kMesh : kImage;
+  constexpr size_t kMaxFiles = 2000;
+  Json out = Json::array();
+  for (const std::string& root : loaded_->assets.roots()) {
+    std::error_code ec;
+    // Symbolic links are not followed: nothing outside the roots is listed.
+    fs::recursive_directory_iterator it(root, fs::directory_options::none, ec), end;
+    for (; !ec && it != end && out.size() < kMaxFiles; it.increment(ec)) {
+      if (it.depth() > 6) it.disable_recursion_pending();
+      if (!it->is_regular_file(ec)) continue;
+      std::string ext = it->path().extension().string();
+      for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+      if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) continue;
+      std::string name = it->path().lexically_relative(root).string();
+      if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+    }
+  }
+  return Json{{"kind", kind}, {"files", out}};
+}
+
+std::vector<std::string> StudioSession::runFlags() const {
+  std::vector<std::string> flags = {"--seed", std::to_string(seed_)};
+  const SceneRequest& r = options_.scene;
+  for (const std::string& p : r.plugins) flags.insert(flags.end(), {"--plugin", p});
+  for (const std::string& s : r.scripts) flags.insert(flags.end(), {"--script", s});
+  for (const std::string& a : r.assetRoots) flags.insert(flags.end(), {"--asset-root", a});
+  if (!r.isaacAssets.empty()) flags.insert(flags.end(), {"--isaac-assets", r.isaacAssets});
+  return flags;
 }
 
 std::string StudioSession::diff() const { return lineDiff(diskText_, text_, options_.scene.scenePath); }

@@ -58,6 +58,13 @@ class StudioSession {
   nlohmann::ordered_json preroll();
   void setSeed(int64_t seed);
   std::string diff() const;
+  // Files of a kind ("mesh" or "image") under the scene's asset roots, as
+  // the scene would name them, for the page's asset fields.
+  nlohmann::ordered_json files(const std::string& kind) const;
+  // What a `sdgbehave run` of the scene as edited needs: its text and the
+  // command-line flags the studio was started with (and the seed).
+  const std::string& text() const { return text_; }
+  std::vector<std::string> runFlags() const;
   nlohmann::ordered_json save();
   // Picks up edits made to the file on disk (reloads when nothing is
   // unsaved here, else reports a conflict). Called before every request.

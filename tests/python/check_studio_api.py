@@ -78,6 +78,21 @@ def main():
             check(all(l in saved.splitlines() for l in kept), "save changed lines it did not edit (comments, order)")
             check(subprocess.run([binary, "validate", scene], capture_output=True).returncode == 0, "saved file invalid")
 
+            # Render frames of the scene as edited, in a child process.
+            status, _ = studio.request("/api/render", {"frames": 2, "name": "../escape"})
+            check(status == 400, f"render into '../escape': {status}")
+            status, job = studio.request("/api/render", {"frames": 2, "name": "quick"})
+            check(status == 200 and job["running"], f"render: {status} {job}")
+            deadline = time.time() + 120
+            while job["running"] and time.time() < deadline:
+                time.sleep(0.2)
+                _, job = studio.request("/api/render")
+            check(job["exit_code"] == 0 and job["frames_written"] == 2 and job["contact_sheet"], f"render: {job}")
+            status, sheet = studio.request("/api/render/contact_sheet", raw=True)
+            check(status == 200 and sheet[:4] == b"\x89PNG", "the render's contact sheet")
+            check(os.path.isfile(os.path.join(tmp, "studio_out", "quick", "rgb_0001.png")), "render output folder")
+            check(not [f for f in os.listdir(tmp) if f.startswith(".")], "the render's scene file was left behind")
+
             # Edited on disk while nothing is unsaved: picked up.
             time.sleep(0.05)
             open(scene, "w").write(saved.replace("radius: 0.2", "radius: 0.3"))
@@ -145,6 +160,10 @@ def main():
                   and "/World/Plain/Marker: {radius: 0.09, behaviors: {locationRandomizer: {enabled: false}}}" in text,
                   f"overrides written:\n{text}")
             check(open(os.path.join(tmp, "lib/box.yaml")).read() == asset_before, "the asset file was written")
+            status, files = studio.request("/api/files?kind=image")
+            check(status == 200 and "lib/tex/red.png" in files["files"], f"files: {files}")
+            status, _ = studio.request("/api/files?kind=../../etc")
+            check(status == 400, f"files of a bad kind: {status}")
             check(subprocess.run([binary, "validate", refscene], capture_output=True).returncode == 0, "override invalid")
         finally:
             studio.stop()
