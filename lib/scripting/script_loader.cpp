@@ -239,6 +239,16 @@ LoadedScript runScript(const std::string& path, const std::string& canonical) {
 
 }  // namespace
 
+void reloadScript(const std::string& path) {
+  std::error_code ec;
+  const std::string canonical = fs::canonical(path, ec).string();
+  if (ec) throw SceneError(SourceLoc{path, 0, 0}, "script " + text::quote(path) + " not found");
+  auto it = loadedScripts().find(canonical);
+  const std::string source = it == loadedScripts().end() ? path : it->second.source;
+  LoadedScript fresh = runScript(source, canonical);  // throws, leaving the old version in place
+  loadedScripts()[canonical] = std::move(fresh);
+}
+
 void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw SceneError(where, "script " + text::quote(path) + " not found");

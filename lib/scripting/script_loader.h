@@ -18,4 +18,9 @@ namespace sdg::scripting {
 // does nothing.
 void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where);
 
+// Runs `path` again (after it changed on disk), so that registries loaded
+// from now on get its new classes. When it no longer loads, the SceneError
+// says why (file:line) and the last good version stays in use.
+void reloadScript(const std::string& path);
+
 }  // namespace sdg::scripting

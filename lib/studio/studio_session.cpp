@@ -16,6 +16,7 @@
 #include "stage/prim_types.h"
 #include "stage/stage_diff.h"
 #include "stage/value_json.h"
+#include "scripting/script_loader.h"
 #include "studio/yaml_text_edit.h"
 #include "writers/colors.h"
 #include "writers/png_encoder.h"
@@ -85,6 +86,8 @@ void StudioSession::load(const std::string& text) {
   request.sceneText = text;
   loaded_ = std::make_unique<LoadedScene>(loadSceneForRun(request));
   text_ = text;
+  for (const std::string& script : loaded_->scriptFiles)
+    if (!scriptStamps_.count(script)) scriptStamps_[script] = stampOf(script);
 }
 
 void StudioSession::runPreroll() {
@@ -103,6 +106,34 @@ void StudioSession::runPreroll() {
 }
 
 void StudioSession::checkFile() {
+  // A behavior script saved in an editor: run it again and reload the scene
+  // with its new classes; one that no longer loads keeps the last good
+  // version running and says why.
+  bool scriptsChanged = false;
+  for (auto& [script, stamp] : scriptStamps_) {
+    const int64_t now = stampOf(script);
+    if (now == stamp) continue;
+    stamp = now;
+    try {
+      scripting::reloadScript(script);
+      scriptsChanged = true;
+    } catch (const SceneError& e) {
+      std::string messages;
+      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
+      reloadNote_ = script + " no longer loads; the last good version keeps running:\n" + messages;
+    }
+  }
+  if (scriptsChanged) {
+    try {
+      load(text_);
+      runPreroll();
+      reloadNote_ = "reloaded: a behavior script changed on disk";
+    } catch (const SceneError& e) {
+      std::string messages;
+      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
+      reloadNote_ = "the scene does not load with the changed script; the last good version keeps running:\n" + messages;
+    }
+  }
   const int64_t stamp = stampOf(options_.scene.scenePath);
   if (stamp == diskStamp_) return;
   diskStamp_ = stamp;

@@ -8,6 +8,7 @@
 // pre-roll stale until preroll() runs). Not thread-safe: the server runs
 // every call on one thread (the one that owns the GL context and Python).
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,6 +84,7 @@ class StudioSession {
   std::string diskText_;  // the file as last read or saved
   std::string text_;      // with the edits
   int64_t diskStamp_ = 0;
+  std::map<std::string, int64_t> scriptStamps_;  // behavior scripts, watched like the scene
   std::unique_ptr<LoadedScene> loaded_;
   std::unique_ptr<Stage> afterPreroll_;
   nlohmann::ordered_json settle_ = nlohmann::ordered_json::array();

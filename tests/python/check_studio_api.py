@@ -138,6 +138,42 @@ def main():
         finally:
             studio.stop()
 
+        # A behavior script saved in an editor is reloaded; a broken one keeps
+        # the last good version running and says where it broke.
+        script = os.path.join(tmp, "wobble.py")
+        source = ("import sdgbehave\n\n\nclass Wobble(sdgbehave.IntervalBehavior):\n"
+                  "    BEHAVIOR_NS = \"wobble\"\n    VARIABLES_TO_EXPOSE = [\n"
+                  "        {\"attr_name\": \"amount\", \"attr_type\": \"double\", \"default_value\": 0.1, \"doc\": \"How far.\"},\n"
+                  "    ]\n\n    def apply(self):\n"
+                  "        self.prim.set_location((0.0, 0.0, self.rng.uniform(0, self.get_exposed_variable(\"amount\"))))\n")
+        open(script, "w").write(source)
+        scripted = os.path.join(tmp, "scripted.yaml")
+        text = open(os.path.join(root, "scenes/examples/location_randomizer.yaml")).read()
+        text = text.replace("version: 1", "version: 1\nscripts: [wobble.py]").replace(
+            "locationRandomizer: {interval: 2,", "wobble: {}\n      locationRandomizer: {interval: 2,")
+        open(scripted, "w").write(text)
+        studio = Studio(binary, scripted)
+        try:
+            def wobble_variables():
+                _, tree = studio.request("/api/tree")
+                box = next(p for p in tree["prims"] if p["path"] == "/World/Box")
+                return [v["name"] for b in box["behaviors"] if b["name"] == "wobble" for v in b["variables"]]
+            check(wobble_variables() == ["amount", "interval"], f"script variables: {wobble_variables()}")
+            time.sleep(0.05)
+            open(script, "w").write(source.replace("    ]\n", "        {\"attr_name\": \"extra\", \"attr_type\": "
+                                                   "\"double\", \"default_value\": 2.0, \"doc\": \"More.\"},\n    ]\n"))
+            _, state = studio.request("/api/state")
+            check("a behavior script changed" in state["note"], f"script reload note: {state}")
+            check(wobble_variables() == ["amount", "extra", "interval"], f"after reload: {wobble_variables()}")
+            time.sleep(0.05)
+            open(script, "w").write(source.replace("def apply(self):", "def apply(self)"))
+            _, state = studio.request("/api/state")
+            check("no longer loads" in state["note"] and "wobble.py:10:20: error" in state["note"], f"broken script: {state}")
+            status, png = studio.request("/api/preview?frame=1", raw=True)
+            check(status == 200 and png[:4] == b"\x89PNG", "the last good version stopped working")
+        finally:
+            studio.stop()
+
         # A referenced asset's values: edits become local overrides.
         shutil.copytree(os.path.join(root, "tests/data/references/lib"), os.path.join(tmp, "lib"))
         refscene = os.path.join(tmp, "ref.yaml")
