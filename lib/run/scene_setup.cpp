@@ -142,7 +142,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
     registry.loadPlugin(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"), plugin.loc);
   // Smart assets: their scripts register before any prim is read, so that
   // the scene can attach and override their behaviors.
-  AssetLibrary assetLibrary;
+  AssetLibrary assetLibrary(request.assetTexts);
   for (const DeclaredFile& script : assetLibrary.preload(doc)) {
     scriptFiles.push_back(script.path);
     scripting::loadScript(registry, script.path, script.loc);

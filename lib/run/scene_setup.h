@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <map>
 #include <optional>
 
 #include "assets/asset_resolver.h"
@@ -26,6 +27,8 @@ struct SceneRequest {
   // The scene's text when it is not read from scenePath (the studio's edits
   // not saved yet); locations still name scenePath.
   std::optional<std::string> sceneText = {};
+  // Smart-asset files' texts that replace theirs on disk (keys: assetKey()).
+  std::map<std::string, std::string> assetTexts = {};
 };
 
 struct LoadedScene {

@@ -21,6 +21,7 @@ struct AssetLibrary::Asset {
 };
 
 AssetLibrary::AssetLibrary() = default;
+AssetLibrary::AssetLibrary(std::map<std::string, std::string> texts) : texts_(std::move(texts)) {}
 AssetLibrary::~AssetLibrary() = default;
 
 namespace {
@@ -103,6 +104,8 @@ class PathRebaser {
 
 }  // namespace
 
+std::string assetKey(const std::string& path) { return absoluteNormal(path); }
+
 SourceLoc referencedFrom(const SourceLoc& loc, const SourceLoc& from) {
   SourceLoc out = loc;
   out.via = std::make_shared<const SourceLoc>(loc.via ? referencedFrom(*loc.via, from) : from);
@@ -144,7 +147,9 @@ AssetLibrary::Asset& AssetLibrary::document(const std::string& absolutePath, con
   auto asset = std::make_unique<Asset>();
   asset->path = absolutePath;
   try {
-    asset->doc = readSceneDocument(displayPath(absolutePath));
+    auto edited = texts_.find(absolutePath);
+    asset->doc = edited == texts_.end() ? readSceneDocument(displayPath(absolutePath))
+                                        : sceneDocumentFromText(edited->second, displayPath(absolutePath));
     log::debug("reference: read " + asset->doc.path);
   } catch (const SceneError& e) {
     std::vector<Diagnostic> problems = e.problems();

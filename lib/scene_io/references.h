@@ -44,6 +44,9 @@ std::optional<ReferenceSpec> readReferenceSpec(const RawNode& node, const std::s
 class AssetLibrary {
  public:
   AssetLibrary();
+  // `texts` replaces what is on disk for some asset files (absolute,
+  // normalized paths): the studio's edits of an asset not saved yet.
+  explicit AssetLibrary(std::map<std::string, std::string> texts);
   ~AssetLibrary();
   AssetLibrary(const AssetLibrary&) = delete;
   AssetLibrary& operator=(const AssetLibrary&) = delete;
@@ -77,7 +80,11 @@ class AssetLibrary {
   std::map<std::string, std::unique_ptr<Asset>> assets_;  // by absolute normalized path
   std::vector<std::string> building_;                       // the chain being built, for cycles
   std::vector<std::string> scripts_;
+  std::map<std::string, std::string> texts_;
 };
+
+// An asset file's key in AssetLibrary's `texts`: absolute and normalized.
+std::string assetKey(const std::string& path);
 
 // `loc` with "referenced from `from`" appended to its chain.
 SourceLoc referencedFrom(const SourceLoc& loc, const SourceLoc& from);

@@ -237,7 +237,10 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     }
     const std::string prim = body["prim"].get<std::string>();
     const std::string value = body["value"].dump();
-    sendJson(res, session.call([&](StudioSession& s) { return s.edit(prim, keys, value); }));
+    if (body.contains("in") && (!body["in"].is_string() || (body["in"] != "scene" && body["in"] != "asset")))
+      throw StudioError(400, "\"in\" is \"scene\" (the default: a local override) or \"asset\"");
+    const bool inAsset = body.contains("in") && body["in"] == "asset";
+    sendJson(res, session.call([&](StudioSession& s) { return s.edit(prim, keys, value, inAsset); }));
   }));
   server.Post("/api/behavior", guarded([&](const httplib::Request& req, httplib::Response& res) {
     Json body = parseBody(req);

@@ -13,6 +13,8 @@
 #include "render/render_list.h"
 #include "run/preroll.h"
 #include "scene_io/inspect.h"
+#include "scene_io/references.h"
+#include "scene_io/scene_loader.h"
 #include "stage/prim_types.h"
 #include "stage/stage_diff.h"
 #include "stage/value_json.h"
@@ -84,6 +86,7 @@ StudioSession::~StudioSession() = default;
 void StudioSession::load(const std::string& text) {
   SceneRequest request = options_.scene;
   request.sceneText = text;
+  request.assetTexts = assetTexts();
   loaded_ = std::make_unique<LoadedScene>(loadSceneForRun(request));
   text_ = text;
   for (const std::string& script : loaded_->scriptFiles)
@@ -139,7 +142,7 @@ void StudioSession::checkFile() {
   diskStamp_ = stamp;
   std::string onDisk = readText(options_.scene.scenePath);
   if (onDisk == diskText_) return;
-  if (text_ != diskText_) {
+  if (unsaved()) {
     conflict_ = true;  // edits here and there: the user decides, nothing is overwritten
     return;
   }
@@ -159,7 +162,7 @@ void StudioSession::checkFile() {
 Json StudioSession::state() {
   Json j;
   j["scene"] = options_.scene.scenePath;
-  j["unsaved"] = text_ != diskText_;
+  j["unsaved"] = unsaved();
   j["conflict"] = conflict_;
   j["preroll_stale"] = prerollStale_;
   j["seed"] = seed_;
@@ -215,23 +218,63 @@ Json StudioSession::tree() {
 
 Json StudioSession::behaviors() { return Json::parse(describeBehaviorsJson(loaded_->registry)); }
 
-Json StudioSession::edit(const std::string& prim, const std::vector<std::string>& keys, const std::string& jsonValue) {
+Json StudioSession::edit(const std::string& prim, const std::vector<std::string>& keys, const std::string& jsonValue,
+                         bool inAsset) {
   if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
-  if (!loaded_->scene.stage.find(prim)) throw StudioError(400, "no prim " + prim);
+  const Prim* target = loaded_->scene.stage.find(prim);
+  if (!target) throw StudioError(400, "no prim " + prim);
   std::string yaml;
   try {
     yaml = yamlFlow(jsonValue);
   } catch (const std::exception& e) {
     throw StudioError(400, std::string("the value is not JSON: ") + e.what());
   }
+  if (!inAsset) {
+    std::string edited;
+    try {
+      edited = applyTextEdit(text_, TextEdit{prim, keys, yaml});
+    } catch (const std::invalid_argument& e) {
+      throw StudioError(400, e.what());
+    }
+    // Checked as a scene: a bad value is refused and the text stays as it was.
+    std::unique_ptr<LoadedScene> candidate = check(edited, assetTexts());
+    text_ = std::move(edited);
+    return adopt(std::move(candidate));
+  }
+  // In the asset: the file and the prim entry the value is written in.
+  const std::string attribute = keys.size() == 3 && keys[0] == "behaviors" ? exposedAttributeName(keys[1], keys[2])
+                                                                           : keys.size() == 1 ? keys[0] : std::string();
+  const Attribute* a = attribute.empty() ? nullptr : target->findAttribute(attribute);
+  if (!a || !a->loc.via)
+    throw StudioError(400, prim + ": this value does not come from a smart asset; edit it in the scene");
+  const std::string key = assetKey(a->loc.file.str());
+  auto it = assetFiles_.find(key);
+  if (it == assetFiles_.end()) {
+    std::string disk = readText(key);
+    it = assetFiles_.emplace(key, AssetFile{disk, disk}).first;
+  }
+  SceneDocument doc = sceneDocumentFromText(it->second.text, key);
+  std::string assetPrim;
+  if (const RawNode* prims = doc.root.isMap() ? doc.root.find("prims") : nullptr; prims && prims->isMap())
+    for (const RawEntry& e : prims->entries)
+      if (e.key.loc.line <= a->loc.line) assetPrim = e.key.scalar;  // the entry the value is written in
+  if (assetPrim.empty()) throw StudioError(400, "cannot find the value's prim in " + key);
   std::string edited;
   try {
-    edited = applyTextEdit(text_, TextEdit{prim, keys, yaml});
+    edited = applyTextEdit(it->second.text, TextEdit{assetPrim, keys, yaml});
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
   }
-  // Checked as a scene: a bad value is refused and the text stays as it was.
-  std::unique_ptr<LoadedScene> candidate = check(edited);
+  std::map<std::string, std::string> texts = assetTexts();
+  texts[key] = edited;
+  std::unique_ptr<LoadedScene> candidate = check(text_, texts);
+  it->second.text = std::move(edited);
+  Json result = adopt(std::move(candidate));
+  result["asset"] = key;
+  return result;
+}
+
+Json StudioSession::adopt(std::unique_ptr<LoadedScene> candidate) {
   // Carry what changed over to the stage after the pre-roll; what the
   // pre-roll depends on makes it stale instead.
   const BehaviorCatalog& catalog = candidate->registry.catalog();
@@ -264,13 +307,27 @@ Json StudioSession::edit(const std::string& prim, const std::vector<std::string>
     }
   }
   loaded_ = std::move(candidate);
-  text_ = std::move(edited);
-  return Json{{"changed", changed}, {"preroll_stale", prerollStale_}, {"unsaved", text_ != diskText_}};
+  return Json{{"changed", changed}, {"preroll_stale", prerollStale_}, {"unsaved", unsaved()}};
 }
 
-std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited) {
+std::map<std::string, std::string> StudioSession::assetTexts() const {
+  std::map<std::string, std::string> texts;
+  for (const auto& [key, file] : assetFiles_) texts[key] = file.text;
+  return texts;
+}
+
+bool StudioSession::unsaved() const {
+  if (text_ != diskText_) return true;
+  for (const auto& [key, file] : assetFiles_)
+    if (file.text != file.disk) return true;
+  return false;
+}
+
+std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited,
+                                                  const std::map<std::string, std::string>& assetTexts) {
   SceneRequest request = options_.scene;
   request.sceneText = edited;
+  request.assetTexts = assetTexts;
   try {
     return std::make_unique<LoadedScene>(loadSceneForRun(request));
   } catch (const SceneError& e) {
@@ -289,7 +346,7 @@ Json StudioSession::attach(const std::string& prim, const std::string& behavior)
     throw StudioError(400, prim + " has " + behavior + " already");
   // A behavior switched off here (enabled: false) is switched on by removing that.
   std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
-  std::unique_ptr<LoadedScene> candidate = check(edited);
+  std::unique_ptr<LoadedScene> candidate = check(edited, assetTexts());
   const Prim* q = candidate->scene.stage.find(prim);
   if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) == q->behaviors().end()) {
     try {
@@ -297,12 +354,12 @@ Json StudioSession::attach(const std::string& prim, const std::string& behavior)
     } catch (const std::invalid_argument& e) {
       throw StudioError(400, e.what());
     }
-    candidate = check(edited);
+    candidate = check(edited, assetTexts());
   }
   loaded_ = std::move(candidate);
   text_ = std::move(edited);
   runPreroll();
-  return Json{{"attached", behavior}, {"unsaved", text_ != diskText_}};
+  return Json{{"attached", behavior}, {"unsaved", unsaved()}};
 }
 
 Json StudioSession::detach(const std::string& prim, const std::string& behavior) {
@@ -312,7 +369,7 @@ Json StudioSession::detach(const std::string& prim, const std::string& behavior)
   if (std::find(p->behaviors().begin(), p->behaviors().end(), behavior) == p->behaviors().end())
     throw StudioError(400, prim + " has no behavior " + behavior);
   std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
-  std::unique_ptr<LoadedScene> candidate = check(edited);
+  std::unique_ptr<LoadedScene> candidate = check(edited, assetTexts());
   const Prim* q = candidate->scene.stage.find(prim);
   if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) != q->behaviors().end()) {
     // Still there: a referenced asset attaches it. Switch it off locally.
@@ -321,12 +378,12 @@ Json StudioSession::detach(const std::string& prim, const std::string& behavior)
     } catch (const std::invalid_argument& e) {
       throw StudioError(400, e.what());
     }
-    candidate = check(edited);
+    candidate = check(edited, assetTexts());
   }
   loaded_ = std::move(candidate);
   text_ = std::move(edited);
   runPreroll();
-  return Json{{"detached", behavior}, {"unsaved", text_ != diskText_}};
+  return Json{{"detached", behavior}, {"unsaved", unsaved()}};
 }
 
 void StudioSession::setSeed(int64_t seed) {
@@ -461,16 +518,34 @@ std::vector<std::string> StudioSession::runFlags() const {
   return flags;
 }
 
-std::string StudioSession::diff() const { return lineDiff(diskText_, text_, options_.scene.scenePath); }
+std::string StudioSession::diff() const {
+  std::string out = lineDiff(diskText_, text_, options_.scene.scenePath);
+  for (const auto& [key, file] : assetFiles_) out += lineDiff(file.disk, file.text, key);
+  return out;
+}
 
 Json StudioSession::save() {
   checkFile();
   if (conflict_) throw StudioError(409, options_.scene.scenePath + " changed on disk after it was loaded; saving "
                                                                    "would overwrite those edits");
-  writeFileAtomic(options_.scene.scenePath, text_);
+  // Asset files edited "in the asset" must still be what was read.
+  for (const auto& [key, file] : assetFiles_)
+    if (file.text != file.disk && readText(key) != file.disk)
+      throw StudioError(409, key + " changed on disk after it was read; saving would overwrite those edits");
+  Json saved = Json::array();
+  if (text_ != diskText_ || assetFiles_.empty()) {
+    writeFileAtomic(options_.scene.scenePath, text_);
+    saved.push_back(options_.scene.scenePath);
+  }
+  for (auto& [key, file] : assetFiles_)
+    if (file.text != file.disk) {
+      writeFileAtomic(key, file.text);
+      file.disk = file.text;
+      saved.push_back(key);
+    }
   diskText_ = text_;
   diskStamp_ = stampOf(options_.scene.scenePath);
-  return Json{{"saved", options_.scene.scenePath}};
+  return Json{{"saved", saved}};
 }
 
 }  // namespace sdg::studio

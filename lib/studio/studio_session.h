@@ -44,9 +44,11 @@ class StudioSession {
   // with its type, value, default, doc, bounds and origin).
   nlohmann::ordered_json tree();
   nlohmann::ordered_json behaviors();
-  // Sets prim.keys (["size"] or ["behaviors", ns, variable]) to a JSON value.
+  // Sets prim.keys (["size"] or ["behaviors", ns, variable]) to a JSON
+  // value: in the scene file (a local override for a smart asset's value),
+  // or, with `inAsset`, in the asset file the value comes from.
   nlohmann::ordered_json edit(const std::string& prim, const std::vector<std::string>& keys,
-                              const std::string& jsonValue);
+                              const std::string& jsonValue, bool inAsset = false);
   // Attaches or detaches a behavior (detaching one a referenced asset
   // brings writes `enabled: false`); the pre-roll runs again.
   nlohmann::ordered_json attach(const std::string& prim, const std::string& behavior);
@@ -75,7 +77,13 @@ class StudioSession {
   void load(const std::string& text);
   // Loads `edited` as the scene (StudioError 400 with the loader's messages
   // when it does not load; nothing changes then).
-  std::unique_ptr<LoadedScene> check(const std::string& edited);
+  std::unique_ptr<LoadedScene> check(const std::string& edited,
+                                     const std::map<std::string, std::string>& assetTexts);
+  // Takes a checked candidate: carries its changes over to the stage after
+  // the pre-roll (or marks the pre-roll stale) and makes it current.
+  nlohmann::ordered_json adopt(std::unique_ptr<LoadedScene> candidate);
+  std::map<std::string, std::string> assetTexts() const;
+  bool unsaved() const;
   void runPreroll();
   std::unique_ptr<Stage> stageAt(uint64_t frame, std::optional<Stage>* before);
   void ensureRenderer();
@@ -85,6 +93,10 @@ class StudioSession {
   std::string text_;      // with the edits
   int64_t diskStamp_ = 0;
   std::map<std::string, int64_t> scriptStamps_;  // behavior scripts, watched like the scene
+  struct AssetFile {
+    std::string disk, text;  // as read, and with the edits made "in the asset"
+  };
+  std::map<std::string, AssetFile> assetFiles_;  // by assetKey()
   std::unique_ptr<LoadedScene> loaded_;
   std::unique_ptr<Stage> afterPreroll_;
   nlohmann::ordered_json settle_ = nlohmann::ordered_json::array();

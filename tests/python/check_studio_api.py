@@ -196,6 +196,19 @@ def main():
                   and "/World/Plain/Marker: {radius: 0.09, behaviors: {locationRandomizer: {enabled: false}}}" in text,
                   f"overrides written:\n{text}")
             check(open(os.path.join(tmp, "lib/box.yaml")).read() == asset_before, "the asset file was written")
+            # Editing the asset itself, when asked: the asset file changes, not the scene.
+            status, answer = studio.request("/api/edit", {"prim": "/World/Plain", "keys": ["size"], "value": 0.6,
+                                                          "in": "asset"})
+            check(status == 200 and answer.get("asset", "").endswith("lib/box.yaml"), f"edit in the asset: {answer}")
+            status, _ = studio.request("/api/edit", {"prim": "/World", "keys": ["visibility"], "value": "invisible",
+                                                     "in": "asset"})
+            check(status == 400, f"'in the asset' for a prim of the scene: {status}")
+            status, diff = studio.request("/api/diff")
+            check("lib/box.yaml" in diff and "+    size: 0.6" in diff, f"asset diff: {diff}")
+            scene_before = open(refscene).read()
+            studio.request("/api/save", {})
+            check("size: 0.6" in open(os.path.join(tmp, "lib/box.yaml")).read(), "the asset edit was not saved")
+            check(open(refscene).read() == scene_before, "an edit in the asset changed the scene file")
             status, files = studio.request("/api/files?kind=image")
             check(status == 200 and "lib/tex/red.png" in files["files"], f"files: {files}")
             status, _ = studio.request("/api/files?kind=../../etc")
