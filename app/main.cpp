@@ -25,7 +25,9 @@ constexpr const char* kDescription =
     "  sdgbehave run scenes/warehouse.yaml --frames 50 --shard 0/2 --out ds   # and --shard 1/2, then:\n"
     "  sdgbehave merge ds && sdgbehave verify ds\n"
     "  sdgbehave schema --out schemas/scene.schema.json\n"
-    "  sdgbehave new-behavior randomScale   # a starter behavior script (Python) and a scene that uses it\n";
+    "  sdgbehave new-behavior randomScale   # a starter behavior script (Python) and a scene that uses it\n"
+    "  sdgbehave flatten scenes/warehouse.yaml -o flat.yaml   # smart assets expanded into one file\n"
+    "  sdgbehave studio scenes/warehouse.yaml   # tune it live in the browser\n";
 
 }  // namespace
 
