@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+
+#include <csignal>
 #include <unistd.h>
 
 #include <filesystem>
@@ -19,6 +21,10 @@ namespace sdg::studio {
 namespace fs = std::filesystem;
 
 RenderJob::~RenderJob() {
+  {
+    std::lock_guard lock(mutex_);
+    if (running_ && pid_ > 0) kill(pid_, SIGTERM);  // the studio stops: so does its render
+  }
   if (waiter_.joinable()) waiter_.join();
 }
 
@@ -46,14 +52,24 @@ void RenderJob::start(const std::string& scenePath, const std::string& text, uin
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, errorsPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // The studio blocks SIGINT and SIGTERM in its threads: the child must not
+  // inherit that, or it could not be stopped.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
   pid_t pid = 0;
-  const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int failed = posix_spawn(&pid, argv[0], &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   if (failed) {
     fs::remove(tempScene_);
     throw StudioError(500, "cannot start the render: " + std::string(strerror(failed)));
   }
   running_ = true;
+  pid_ = pid;
   exitCode_ = -1;
   frames_ = frames;
   errors_.clear();

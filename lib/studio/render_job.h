@@ -36,6 +36,7 @@ class RenderJob {
   std::mutex mutex_;
   std::thread waiter_;
   bool running_ = false;
+  int pid_ = 0;
   int exitCode_ = -1;
   std::string out_, tempScene_, errors_;
   uint64_t frames_ = 0;

@@ -12,6 +12,7 @@
 
 #include "core/diagnostics.h"
 #include "core/log.h"
+#include "scene_io/prim_reader.h"
 #include "studio/render_job.h"
 
 // The page, compiled in (lib/studio/page/index.html).
@@ -178,6 +179,15 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     const std::string host = req.get_header_value("Host");
     bool hostOk = false;
     for (const std::string& h : hosts) hostOk = hostOk || host == h + ":" + std::to_string(port);
+    if (!hostOk && (options.host == "0.0.0.0" || options.host == "::")) {
+      // Listening on every address: any IP literal or localhost, never a
+      // name (DNS rebinding comes through names).
+      const std::string suffix = ":" + std::to_string(port);
+      const std::string name = host.ends_with(suffix) ? host.substr(0, host.size() - suffix.size()) : "";
+      hostOk = name == "localhost" || (!name.empty() && name.find_first_not_of("0123456789.") == std::string::npos) ||
+               (name.size() > 2 && name.front() == '[' && name.back() == ']' &&
+                name.find_first_not_of("0123456789abcdefABCDEF:[]") == std::string::npos);
+    }
     if (!hostOk) {
       sendError(res, 421, "wrong Host header '" + host + "'");
       return httplib::Server::HandlerResponse::Handled;
@@ -232,9 +242,17 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
       throw StudioError(400, "an edit is {\"prim\": PATH, \"keys\": [KEY, ...], \"value\": JSON}");
     std::vector<std::string> keys;
     for (const auto& k : body["keys"]) {
-      if (!k.is_string() || k.get<std::string>().empty()) throw StudioError(400, "keys are non-empty strings");
+      // Names only: a key is written into the YAML text as it is.
+      if (!k.is_string() || !isValidAttributeName(k.get<std::string>()))
+        throw StudioError(400, "keys are attribute or behavior names (identifiers joined by ':'), found " + k.dump());
       keys.push_back(k.get<std::string>());
     }
+    // What a page may change is values: not which assets, scripts or
+    // plugins load, not a prim's type.
+    if (keys.front() == "reference" || keys.front() == "type" || keys.front() == "attributes")
+      throw StudioError(400, "the studio edits values; change '" + keys.front() + "' in the file");
+    if (keys.front() == "behaviors" && keys.size() != 3)
+      throw StudioError(400, "a behavior's variable is [\"behaviors\", BEHAVIOR, VARIABLE]");
     const std::string prim = body["prim"].get<std::string>();
     const std::string value = body["value"].dump();
     if (body.contains("in") && (!body["in"].is_string() || (body["in"] != "scene" && body["in"] != "asset")))
@@ -292,6 +310,9 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     res.set_header("Cache-Control", "no-store");
     res.set_content(render.contactSheet(), "image/png");
   }));
+  server.Post("/api/reload", guarded([&](const httplib::Request&, httplib::Response& res) {
+    sendJson(res, session.call([](StudioSession& s) { return s.reload(); }));
+  }));
   server.Post("/api/save", guarded([&](const httplib::Request&, httplib::Response& res) {
     sendJson(res, session.call([](StudioSession& s) { return s.save(); }));
   }));
@@ -299,6 +320,12 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     if (res.body.empty()) sendError(res, res.status, "no such page or API call");
   });
 
+  // SO_REUSEADDR only: with SO_REUSEPORT (cpp-httplib's default) a second
+  // studio on the same port would share it silently.
+  server.set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<const void*>(&yes), sizeof yes);
+  });
   if (port == 0) port = server.bind_to_any_port(options.host);
   else if (!server.bind_to_port(options.host, port)) port = -1;
   if (port <= 0) throw RunError("studio: cannot listen on " + options.host + ":" + std::to_string(options.port));

@@ -511,6 +511,7 @@ Json StudioSession::files(const std::string& kind) const {
 std::vector<std::string> StudioSession::runFlags() const {
   std::vector<std::string> flags = {"--seed", std::to_string(seed_)};
   const SceneRequest& r = options_.scene;
+  for (const std::string& o : r.overrides) flags.insert(flags.end(), {"--set", o});
   for (const std::string& p : r.plugins) flags.insert(flags.end(), {"--plugin", p});
   for (const std::string& s : r.scripts) flags.insert(flags.end(), {"--script", s});
   for (const std::string& a : r.assetRoots) flags.insert(flags.end(), {"--asset-root", a});
@@ -522,6 +523,16 @@ std::string StudioSession::diff() const {
   std::string out = lineDiff(diskText_, text_, options_.scene.scenePath);
   for (const auto& [key, file] : assetFiles_) out += lineDiff(file.disk, file.text, key);
   return out;
+}
+
+Json StudioSession::reload() {
+  diskText_ = readText(options_.scene.scenePath);
+  diskStamp_ = stampOf(options_.scene.scenePath);
+  assetFiles_.clear();
+  conflict_ = false;
+  load(diskText_);
+  runPreroll();
+  return Json{{"reloaded", options_.scene.scenePath}};
 }
 
 Json StudioSession::save() {

@@ -69,6 +69,9 @@ class StudioSession {
   const std::string& text() const { return text_; }
   std::vector<std::string> runFlags() const;
   nlohmann::ordered_json save();
+  // Drops the unsaved edits and loads the files as they are on disk (the
+  // way out of a conflict).
+  nlohmann::ordered_json reload();
   // Picks up edits made to the file on disk (reloads when nothing is
   // unsaved here, else reports a conflict). Called before every request.
   void checkFile();

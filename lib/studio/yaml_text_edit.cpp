@@ -246,6 +246,10 @@ std::string yamlFlow(const std::string& json) {
       std::string out = "{";
       bool first = true;
       for (const auto& [k, x] : v.items()) {
+        // A key goes into the text as it is: only plain names.
+        if (k.empty() || k.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_:") !=
+                             std::string::npos)
+          throw std::invalid_argument("a mapping key in a value must be a plain name, found \"" + k + "\"");
         out += (first ? "" : ", ") + k + ": " + emit(x);
         first = false;
       }

@@ -45,7 +45,14 @@ def main():
                                ("/api/edit", {"prim": "/World/Box", "keys": ["size"], "value": "big"}),
                                ("/api/edit", {"prim": "/World/Box"}), ("/api/seed", {"seed": "x"}),
                                ("/api/preview?pass=xray", None), ("/api/preview?frame=-1", None),
-                               ("/api/record?frame=1e9", None), ("/api/nothing", None)):
+                               ("/api/record?frame=1e9", None), ("/api/nothing", None),
+                               # Only values: no YAML smuggled in through names, no new references.
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["size: 1\nscripts: [evil.py]\nx"], "value": 1}),
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["reference"], "value": "other.yaml"}),
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["behaviors", "locationRandomizer"],
+                                              "value": {"interval": 1}}),
+                               ("/api/edit", {"prim": "/World/Box", "keys": ["attributes"],
+                                              "value": {"a}\nscripts: [evil.py]\n#": 1}})):
                 status, answer = studio.request(path, body)
                 check(400 <= status < 500 and "error" in answer, f"{path} {body}: {status} {answer}")
             check(studio.alive(), "the server died of a bad request")
@@ -109,6 +116,9 @@ def main():
             status, _ = studio.request("/api/save", {})
             check(status == 409, f"save during a conflict: {status}")
             check(open(scene).read().endswith("# edited in an editor\n"), "the file on disk was overwritten")
+            status, _ = studio.request("/api/reload", {})
+            _, state = studio.request("/api/state")
+            check(status == 200 and not state["conflict"] and not state["unsaved"], f"reload: {status} {state}")
         finally:
             check(studio.stop() == 0, "the server did not stop cleanly on SIGTERM")
 
