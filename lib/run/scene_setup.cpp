@@ -72,10 +72,9 @@ Scene flattenedScene(const LoadedScene& loaded) {
     saved.isaacAssets = std::filesystem::absolute(loaded.assets.isaacRoot()).lexically_normal().string();
   // Every script, the referenced assets' too: the saved stage is flat.
   saved.scripts = loaded.scriptFiles;
-  for (std::vector<std::string>* files : {&saved.plugins})
-    for (std::string& file : *files)
-      if (std::filesystem::path(file).is_relative())
-        file = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / file).lexically_normal().string();
+  for (std::string& plugin : saved.plugins)
+    if (std::filesystem::path(plugin).is_relative())
+      plugin = std::filesystem::absolute(std::filesystem::path(loaded.scene.sourceDir) / plugin).lexically_normal().string();
   return saved;
 }
 
