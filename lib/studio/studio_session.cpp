@@ -306,6 +306,13 @@ Json StudioSession::adopt(std::unique_ptr<LoadedScene> candidate) {
       target->removeAttribute(c.attribute);
     }
   }
+  // Labels are not in the stage diff: carry them over as they are.
+  candidate->scene.stage.traverse([&](const Prim& p) {
+    if (Prim* target = afterPreroll_->find(p.path()); target && target->semantics() != p.semantics()) {
+      target->semantics() = p.semantics();
+      changed.push_back(Json{{"prim", p.path()}, {"attribute", "semantics"}});
+    }
+  });
   loaded_ = std::move(candidate);
   return Json{{"changed", changed}, {"preroll_stale", prerollStale_}, {"unsaved", unsaved()}};
 }
@@ -405,9 +412,11 @@ std::unique_ptr<Stage> StudioSession::stageAt(uint64_t frame, std::optional<Stag
   BehaviorContext context = behaviorContextFor(*loaded_, seed_, setup);
   BehaviorRuntime runtime(*stage, loaded_->registry, context);
   runtime.init();
+  // Frame 0's changes include what behaviors do on play, as in `run --record`.
+  if (before && frame == 0) before->emplace(*stage);
   runtime.play();
   for (uint64_t f = 0; f <= frame; ++f) {
-    if (before && f == frame) before->emplace(*stage);
+    if (before && f == frame && frame > 0) before->emplace(*stage);
     runtime.update();
   }
   // The runtime's destroy restores its stage: hand back a copy of the frame.

@@ -73,6 +73,14 @@ def main():
             check(after[:8] == b"\x89PNG\r\n\x1a\n" and after != before, "the preview did not change")
             _, record = studio.request("/api/record?frame=1")
             check(any(c["prim"] == "/World/Box" for c in record["changes"]), f"record: {record}")
+            # Frame 0 includes what behaviors do on play (interval 2 applies once there).
+            _, record = studio.request("/api/record?frame=0")
+            check(any(c["prim"] == "/World/Box" for c in record["changes"]), f"frame 0's record: {record}")
+            # A label edit reaches the preview's stage without a new pre-roll.
+            status, answer = studio.request("/api/edit", {"prim": "/World/Box", "keys": ["semantics", "class"],
+                                                          "value": "crate"})
+            check(status == 200 and {"prim": "/World/Box", "attribute": "semantics"} in answer["changed"],
+                  f"label edit: {status} {answer}")
             # A variable the file does not set goes into its flow mapping.
             status, _ = studio.request("/api/edit", {"prim": "/World/Box", "keys": ["behaviors", "locationRandomizer", "seed"],
                                                      "value": 7})
