@@ -405,7 +405,8 @@ Json StudioSession::preroll() {
 }
 
 std::unique_ptr<Stage> StudioSession::stageAt(uint64_t frame, std::optional<Stage>* before) {
-  constexpr uint64_t kMaxPreviewFrame = 100000;
+  // Each preview replays the frames before it: bound the work one request can ask for.
+  constexpr uint64_t kMaxPreviewFrame = 10000;
   if (frame > kMaxPreviewFrame) throw StudioError(400, "frame must be at most " + std::to_string(kMaxPreviewFrame));
   auto stage = std::make_unique<Stage>(*afterPreroll_);
   RunBehaviorSetup setup;
