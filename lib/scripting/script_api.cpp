@@ -116,23 +116,20 @@ void setAttribute(PrimHandle& h, const std::string& name, py::handle value, std:
   prim.setAttribute(name, std::move(v), custom);
 }
 
-XformOp& locationOp(PrimHandle& h) {
+// The op a write goes into, found (or inserted) as the built-ins do, after
+// the journal saved the prim's ops.
+XformOp& opToWrite(PrimHandle& h, std::optional<size_t> (*find)(const Prim&), size_t (*insert)(Prim&)) {
   Prim& prim = h.prim();
-  if (!prim.typeInfo().xformable) throw py::value_error(h.path + " is a " + std::string(prim.typeInfo().name) + ", which has no transform");
+  if (!prim.typeInfo().xformable)
+    throw py::value_error(h.path + " is a " + std::string(prim.typeInfo().name) + ", which has no transform");
   if (!h.ctx->created(prim)) h.ctx->journal().beforeXformWrite(prim);
-  std::optional<size_t> index = findLocationOp(prim);
-  if (!index) index = insertTranslateOp(prim);
+  std::optional<size_t> index = find(prim);
+  if (!index) index = insert(prim);
   return prim.xformOps()[*index];
 }
 
-XformOp& rotationOp(PrimHandle& h) {
-  Prim& prim = h.prim();
-  if (!prim.typeInfo().xformable) throw py::value_error(h.path + " is a " + std::string(prim.typeInfo().name) + ", which has no transform");
-  if (!h.ctx->created(prim)) h.ctx->journal().beforeXformWrite(prim);
-  std::optional<size_t> index = findRotationOp(prim);
-  if (!index) index = insertOrientOp(prim);
-  return prim.xformOps()[*index];
-}
+XformOp& locationOp(PrimHandle& h) { return opToWrite(h, &findLocationOp, &insertTranslateOp); }
+XformOp& rotationOp(PrimHandle& h) { return opToWrite(h, &findRotationOp, &insertOrientOp); }
 
 Matrix4d parentWorld(const Stage& stage, const Prim& prim) {
   return prim.parent()->isPseudoRoot() ? Matrix4d::Identity() : stage.worldMatrix(*prim.parent());

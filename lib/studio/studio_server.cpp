@@ -268,7 +268,7 @@ void serveStudio(const StudioOptions& studio, const ServerOptions& options,
     const std::string prim = body["prim"], behavior = body["behavior"], action = body["action"];
     if (action != "attach" && action != "detach") throw StudioError(400, "action is attach or detach, found " + action);
     sendJson(res, session.call([&](StudioSession& s) {
-      return action == "attach" ? s.attach(prim, behavior) : s.detach(prim, behavior);
+      return s.setAttached(prim, behavior, action == "attach");
     }));
   }));
   server.Get("/api/preview", guarded([&](const httplib::Request& req, httplib::Response& res) {

@@ -220,7 +220,7 @@ Json StudioSession::behaviors() { return Json::parse(describeBehaviorsJson(loade
 
 Json StudioSession::edit(const std::string& prim, const std::vector<std::string>& keys, const std::string& jsonValue,
                          bool inAsset) {
-  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
+  refuseDuringConflict();
   const Prim* target = loaded_->scene.stage.find(prim);
   if (!target) throw StudioError(400, "no prim " + prim);
   std::string yaml;
@@ -344,44 +344,27 @@ std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited,
   }
 }
 
-Json StudioSession::attach(const std::string& prim, const std::string& behavior) {
+void StudioSession::refuseDuringConflict() const {
   if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
-  const Prim* p = loaded_->scene.stage.find(prim);
-  if (!p) throw StudioError(400, "no prim " + prim);
-  if (!loaded_->registry.catalog().find(behavior)) throw StudioError(400, "no behavior " + behavior);
-  if (std::find(p->behaviors().begin(), p->behaviors().end(), behavior) != p->behaviors().end())
-    throw StudioError(400, prim + " has " + behavior + " already");
-  // A behavior switched off here (enabled: false) is switched on by removing that.
-  std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
-  std::unique_ptr<LoadedScene> candidate = check(edited, assetTexts());
-  const Prim* q = candidate->scene.stage.find(prim);
-  if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) == q->behaviors().end()) {
-    try {
-      edited = applyTextEdit(edited, TextEdit{prim, {"behaviors", behavior}, "{}"});
-    } catch (const std::invalid_argument& e) {
-      throw StudioError(400, e.what());
-    }
-    candidate = check(edited, assetTexts());
-  }
-  loaded_ = std::move(candidate);
-  text_ = std::move(edited);
-  runPreroll();
-  return Json{{"attached", behavior}, {"unsaved", unsaved()}};
 }
 
-Json StudioSession::detach(const std::string& prim, const std::string& behavior) {
-  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
-  const Prim* p = loaded_->scene.stage.find(prim);
-  if (!p) throw StudioError(400, "no prim " + prim);
-  if (std::find(p->behaviors().begin(), p->behaviors().end(), behavior) == p->behaviors().end())
-    throw StudioError(400, prim + " has no behavior " + behavior);
+Json StudioSession::setAttached(const std::string& prim, const std::string& behavior, bool attach) {
+  refuseDuringConflict();
+  auto has = [&](const LoadedScene& scene) {
+    const Prim* p = scene.scene.stage.find(prim);
+    return std::find(p->behaviors().begin(), p->behaviors().end(), behavior) != p->behaviors().end();
+  };
+  if (!loaded_->scene.stage.find(prim)) throw StudioError(400, "no prim " + prim);
+  if (!loaded_->registry.catalog().find(behavior)) throw StudioError(400, "no behavior " + behavior);
+  if (has(*loaded_) == attach)
+    throw StudioError(400, prim + (attach ? " has " + behavior + " already" : " has no behavior " + behavior));
+  // Removing the entry undoes an `enabled: false` (attach) or a local
+  // attachment (detach); what a referenced asset brings needs an entry.
   std::string edited = removeTextKey(text_, prim, {"behaviors", behavior});
   std::unique_ptr<LoadedScene> candidate = check(edited, assetTexts());
-  const Prim* q = candidate->scene.stage.find(prim);
-  if (std::find(q->behaviors().begin(), q->behaviors().end(), behavior) != q->behaviors().end()) {
-    // Still there: a referenced asset attaches it. Switch it off locally.
+  if (has(*candidate) != attach) {
     try {
-      edited = applyTextEdit(edited, TextEdit{prim, {"behaviors", behavior}, "{enabled: false}"});
+      edited = applyTextEdit(edited, TextEdit{prim, {"behaviors", behavior}, attach ? "{}" : "{enabled: false}"});
     } catch (const std::invalid_argument& e) {
       throw StudioError(400, e.what());
     }
@@ -390,7 +373,7 @@ Json StudioSession::detach(const std::string& prim, const std::string& behavior)
   loaded_ = std::move(candidate);
   text_ = std::move(edited);
   runPreroll();
-  return Json{{"detached", behavior}, {"unsaved", unsaved()}};
+  return Json{{attach ? "attached" : "detached", behavior}, {"unsaved", unsaved()}};
 }
 
 void StudioSession::setSeed(int64_t seed) {

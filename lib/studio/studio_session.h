@@ -49,10 +49,11 @@ class StudioSession {
   // or, with `inAsset`, in the asset file the value comes from.
   nlohmann::ordered_json edit(const std::string& prim, const std::vector<std::string>& keys,
                               const std::string& jsonValue, bool inAsset = false);
-  // Attaches or detaches a behavior (detaching one a referenced asset
-  // brings writes `enabled: false`); the pre-roll runs again.
-  nlohmann::ordered_json attach(const std::string& prim, const std::string& behavior);
-  nlohmann::ordered_json detach(const std::string& prim, const std::string& behavior);
+  // Attaches (`attach`) or detaches a behavior: its entry is removed from
+  // the prim's behaviors: and, if the result is not yet what was asked,
+  // written as `{}` (attach) or `{enabled: false}` (detaching one a
+  // referenced asset brings). The pre-roll runs again.
+  nlohmann::ordered_json setAttached(const std::string& prim, const std::string& behavior, bool attach);
   // The camera's picture of frame `frame` (0-based: after frame + 1 updates):
   // pass rgb, semantic, instance, depth or boxes. PNG bytes.
   std::vector<uint8_t> preview(uint64_t frame, const std::string& pass, const std::string& camera);
@@ -78,6 +79,8 @@ class StudioSession {
 
  private:
   void load(const std::string& text);
+  // StudioError 409 while the file on disk and the unsaved edits here differ.
+  void refuseDuringConflict() const;
   // Loads `edited` as the scene (StudioError 400 with the loader's messages
   // when it does not load; nothing changes then).
   std::unique_ptr<LoadedScene> check(const std::string& edited,
