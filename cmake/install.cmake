@@ -6,11 +6,15 @@
 # A plugin is a MODULE library that sdgbehave dlopens; it links none of the
 # sdg_* static libraries: their symbols resolve from the executable, which
 # exports them (ENABLE_EXPORTS in app/CMakeLists.txt). So nothing but the
-# executable and headers is installed, and the package has no library.
+# executable, its image module and headers is installed, and the package
+# has no library.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 install(TARGETS sdgbehave RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The image module (every format but 8-bit PNG), found at run time beside
+# the executable as <prefix>/lib/sdgbehave/sdgbehave_images.so.
+install(TARGETS sdgbehave_images LIBRARY DESTINATION lib/sdgbehave)
 
 # The include closure of behavior/plugin_api.h, behavior/interval_behavior.h,
 # core/log.h (what the templates in lib/behaviors/templates use) and

@@ -16,7 +16,7 @@
 
 #include "assets/asset_resolver.h"
 #include "core/diagnostics.h"
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 #include "run/scene_setup.h"
 #include "writers/png_encoder.h"
 

@@ -57,6 +57,14 @@ std::optional<std::string> AssetResolver::resolve(const std::string& path) const
   return std::nullopt;
 }
 
+std::optional<std::string> AssetResolver::resolveFolder(const std::string& path) const {
+  for (const std::string& candidate : candidates(path)) {
+    std::error_code ec;
+    if (fs::is_directory(candidate, ec)) return candidate;
+  }
+  return std::nullopt;
+}
+
 std::string AssetResolver::describeSearch(const std::string& path) const {
   std::vector<std::string> tried = candidates(path);
   if (tried.empty()) return "no search roots";

@@ -22,6 +22,8 @@ class AssetResolver {
   // The local copy of Isaac Sim's asset pack ("" when none is configured).
   const std::string& isaacRoot() const { return isaacRoot_; }
   std::optional<std::string> resolve(const std::string& path) const;
+  // The same for a folder.
+  std::optional<std::string> resolveFolder(const std::string& path) const;
   // The candidates resolve() tries, in order and without repeats.
   std::vector<std::string> candidates(const std::string& path) const;
   // "searched: a, b, c" for messages.

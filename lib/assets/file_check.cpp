@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "assets/image.h"
 #include "core/log.h"
 #include "core/text.h"
 #include "stage/prim_types.h"
@@ -22,6 +23,19 @@ std::string lowerExtension(const std::string& file) {
   std::string ext = fs::path(file).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+// Whether the image's header reads: any format OpenImageIO reads, within
+// the size limits. Only the header is read, so `validate` stays fast.
+std::optional<std::string> imageProblem(const std::string& file, const std::string& path) {
+  try {
+    readImageHeader(path);
+    return std::nullopt;
+  } catch (const RunError& e) {
+    std::string why = e.what();
+    if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);  // the path is said once, below
+    return "texture " + text::quote(file) + " (" + path + "): " + why;
+  }
 }
 
 void warnIsaacDefaultsSkipped(const std::string& owner) {
@@ -79,8 +93,6 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   if (kind == FileKind::Mesh && ext.starts_with(".usd"))
     return noun + " " + text::quote(file) + " is a USD file, which sdgbehave cannot read; convert it to glTF, OBJ, " +
            "FBX, PLY, STL or DAE (for example with Blender) and name that file instead";
-  if (kind == FileKind::Image && ext != ".png")
-    return noun + " " + text::quote(file) + ": sdgbehave reads PNG textures only, found a '" + ext + "' file name";
   std::optional<std::string> path = resolver.resolve(file);
   if (!path) {
     std::string why = noun + " " + text::quote(file) + " not found; " + resolver.describeSearch(file);
@@ -92,6 +104,7 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   std::ifstream probe(*path, std::ios::binary);
   if (!probe || probe.peek() == std::ifstream::traits_type::eof())
     return noun + " " + text::quote(file) + " (" + *path + ") cannot be read" + (probe ? ": it is empty" : "");
+  if (kind == FileKind::Image) return imageProblem(file, *path);
   return std::nullopt;
 }
 

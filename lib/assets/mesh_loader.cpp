@@ -1,8 +1,10 @@
 #include "assets/mesh_loader.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
@@ -13,23 +15,103 @@
 namespace sdg {
 namespace {
 
-MeshPart partFromMaterial(const aiMaterial* material, const std::filesystem::path& folder) {
+// A content key for embedded images: the same picture in two files (or
+// twice in one) is decoded and uploaded once.
+std::string contentKey(const uint8_t* bytes, size_t size, uint32_t width, uint32_t height) {
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a, 64 bits
+  auto mix = [&](uint8_t b) { hash = (hash ^ b) * 1099511628211ull; };
+  for (size_t i = 0; i < size; ++i) mix(bytes[i]);
+  for (int shift = 0; shift < 32; shift += 8) {
+    mix(uint8_t(width >> shift));
+    mix(uint8_t(height >> shift));
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return std::string("embedded:") + text;
+}
+
+// Turns the texture a material names into a texture key: an embedded image
+// (assimp's "*N", or a file name that matches an embedded texture, as FBX
+// files store them) is copied into mesh.embeddedImages; anything else is a
+// file beside the mesh file.
+class TextureNamer {
+ public:
+  TextureNamer(const aiScene& scene, const std::string& path, MeshData& mesh)
+      : scene_(scene), path_(path), folder_(std::filesystem::path(path).parent_path()), mesh_(mesh) {}
+
+  std::string keyOf(const aiString& name) {
+    const std::string text = name.C_Str();
+    if (text.empty()) return {};
+    const aiTexture* embedded = scene_.GetEmbeddedTexture(name.C_Str());
+    if (!embedded) {
+      if (text[0] == '*') throw RunError(path_ + ": a material names embedded texture " + text + ", which the file lacks");
+      return (folder_ / text).lexically_normal().string();
+    }
+    EmbeddedImage image;
+    image.name = std::filesystem::path(path_).filename().string() + "[" + text + "]";
+    const auto* data = reinterpret_cast<const uint8_t*>(embedded->pcData);
+    if (embedded->mHeight == 0) {  // compressed: mWidth bytes in the file's format
+      image.bytes = std::make_shared<std::vector<uint8_t>>(data, data + embedded->mWidth);
+    } else {  // raw texels (aiTexel is b, g, r, a)
+      image.rawWidth = embedded->mWidth;
+      image.rawHeight = embedded->mHeight;
+      image.bytes = std::make_shared<std::vector<uint8_t>>(data, data + size_t(embedded->mWidth) * embedded->mHeight * 4);
+    }
+    image.key = contentKey(image.bytes->data(), image.bytes->size(), image.rawWidth, image.rawHeight);
+    for (const EmbeddedImage& known : mesh_.embeddedImages)
+      if (known.key == image.key) return known.key;
+    mesh_.embeddedImages.push_back(image);
+    return image.key;
+  }
+
+  // The first texture of `type` the material names, as a key ("" for none).
+  std::string texture(const aiMaterial& material, aiTextureType type) {
+    aiString name;
+    if (material.GetTextureCount(type) == 0 || material.GetTexture(type, 0, &name) != AI_SUCCESS) return {};
+    return keyOf(name);
+  }
+
+ private:
+  const aiScene& scene_;
+  std::string path_;
+  std::filesystem::path folder_;
+  MeshData& mesh_;
+};
+
+// The part's material as glTF's metallic-roughness model describes it
+// (other formats fill what they have: diffuse colour and texture, normals).
+MeshPart partFromMaterial(const aiMaterial* material, TextureNamer& textures) {
   MeshPart part;
   if (!material) return part;
   part.hasMaterial = true;
   aiColor4D color;
   if (material->Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS ||
-      material->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS)
+      material->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) {
     part.baseColor = Vec3f(color.r, color.g, color.b);
+    part.opacityConstant = color.a;
+  }
   float value = 0;
   if (material->Get(AI_MATKEY_ROUGHNESS_FACTOR, value) == AI_SUCCESS) part.roughness = value;
   if (material->Get(AI_MATKEY_METALLIC_FACTOR, value) == AI_SUCCESS) part.metallic = value;
-  aiString texture;
-  if (material->GetTexture(aiTextureType_BASE_COLOR, 0, &texture) == AI_SUCCESS ||
-      material->GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS) {
-    std::string name = texture.C_Str();
-    // Embedded textures ("*0") are not supported; the base colour stands in.
-    if (!name.empty() && name[0] != '*') part.texture = (folder / name).lexically_normal().string();
+  part.maps.baseColor = textures.texture(*material, aiTextureType_BASE_COLOR);
+  if (part.maps.baseColor.empty()) part.maps.baseColor = textures.texture(*material, aiTextureType_DIFFUSE);
+  // glTF's metallicRoughness texture packs roughness in green and metallic
+  // in blue, as an ORM texture does; assimp hands it over as "unknown".
+  part.maps.orm = textures.texture(*material, aiTextureType_UNKNOWN);
+  if (part.maps.orm.empty()) part.maps.orm = textures.texture(*material, aiTextureType_METALNESS);
+  part.maps.normal = textures.texture(*material, aiTextureType_NORMALS);
+  if (!part.maps.normal.empty() &&
+      material->Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), value) == AI_SUCCESS)
+    part.normalScale = value;
+  aiString alphaMode;
+  if (material->Get(AI_MATKEY_GLTF_ALPHAMODE, alphaMode) == AI_SUCCESS) {
+    const std::string mode = alphaMode.C_Str();
+    // BLEND (partial transparency) is drawn as a cut-out at one half.
+    if (mode == "MASK" || mode == "BLEND") {
+      part.opacity = part.maps.baseColor.empty() ? OpacitySource::Constant : OpacitySource::BaseColorAlpha;
+      part.opacityCutoff = 0.5f;
+      if (mode == "MASK" && material->Get(AI_MATKEY_GLTF_ALPHACUTOFF, value) == AI_SUCCESS) part.opacityCutoff = value;
+    }
   }
   return part;
 }
@@ -55,8 +137,8 @@ MeshData loadMeshFile(const std::string& path, const std::string& submesh) {
     else if (scene->mMetaData->Get("UnitScaleFactor", factorF) && factorF > 0) unitScale = factorF / 100.0;
   }
 
-  std::filesystem::path folder = std::filesystem::path(path).parent_path();
   MeshData mesh;
+  TextureNamer textures(*scene, path, mesh);
   size_t triangles = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
     const aiMesh* in = scene->mMeshes[m];
@@ -82,7 +164,7 @@ MeshData loadMeshFile(const std::string& path, const std::string& submesh) {
     }
     MeshPart part = partFromMaterial(in->mMaterialIndex < scene->mNumMaterials ? scene->mMaterials[in->mMaterialIndex]
                                                                                 : nullptr,
-                                     folder);
+                                     textures);
     part.firstIndex = static_cast<uint32_t>(mesh.indices.size());
     for (unsigned f = 0; f < in->mNumFaces; ++f) {
       const aiFace& face = in->mFaces[f];

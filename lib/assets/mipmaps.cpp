@@ -8,7 +8,7 @@ namespace sdg {
 
 namespace {
 
-double srgbToLinear(double code) {
+double srgbCodeToLinear(double code) {
   const double v = code / 255.0;
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
@@ -21,14 +21,14 @@ struct SrgbTables {
 const SrgbTables& srgbTables() {
   static const SrgbTables tables = [] {
     SrgbTables t;
-    for (int k = 0; k < 256; ++k) t.linear[k] = float(srgbToLinear(k));
-    for (int k = 0; k < 255; ++k) t.upperBounds[k] = float(srgbToLinear(k + 0.5));
+    for (int k = 0; k < 256; ++k) t.linear[k] = float(srgbCodeToLinear(k));
+    for (int k = 0; k < 255; ++k) t.upperBounds[k] = float(srgbCodeToLinear(k + 0.5));
     return t;
   }();
   return tables;
 }
 
-uint8_t linearToSrgb(float v, const SrgbTables& t) {
+uint8_t linearToSrgbCode(float v, const SrgbTables& t) {
   return uint8_t(std::upper_bound(t.upperBounds.begin(), t.upperBounds.end(), v) - t.upperBounds.begin());
 }
 
@@ -53,7 +53,8 @@ std::vector<Taps> tapsFor(uint32_t source, uint32_t target) {
   return taps;
 }
 
-ImageRgba8 halve(const ImageRgba8& source, const SrgbTables& tables) {
+// `tables` null: every channel is averaged as stored (data textures).
+ImageRgba8 halve(const ImageRgba8& source, const SrgbTables* tables) {
   ImageRgba8 level;
   level.width = std::max(1u, source.width / 2);
   level.height = std::max(1u, source.height / 2);
@@ -69,24 +70,22 @@ ImageRgba8 halve(const ImageRgba8& source, const SrgbTables& tables) {
         for (int i = 0; i < tx.count; ++i) {
           const uint8_t* texel = row + size_t(tx.first + i) * 4;
           const float w = ty.weights[j] * tx.weights[i];
-          for (int c = 0; c < 3; ++c) sum[c] += w * tables.linear[texel[c]];
+          for (int c = 0; c < 3; ++c) sum[c] += w * (tables ? tables->linear[texel[c]] : float(texel[c]));
           sum[3] += w * float(texel[3]);
         }
       }
       uint8_t* out = level.pixels.data() + (size_t(y) * level.width + x) * 4;
-      for (int c = 0; c < 3; ++c) out[c] = linearToSrgb(sum[c], tables);
-      out[3] = uint8_t(std::clamp(std::lround(sum[3]), 0L, 255L));
+      for (int c = 0; c < 4; ++c) out[c] = uint8_t(std::clamp(std::lround(sum[c]), 0L, 255L));
+      if (tables)
+        for (int c = 0; c < 3; ++c) out[c] = linearToSrgbCode(sum[c], *tables);
     }
   }
   return level;
 }
 
-}  // namespace
-
-std::vector<ImageRgba8> srgbMipLevels(const ImageRgba8& base) {
+std::vector<ImageRgba8> mipLevels(const ImageRgba8& base, const SrgbTables* tables) {
   std::vector<ImageRgba8> levels;
   levels.reserve(size_t(std::log2(double(std::max({base.width, base.height, 1u})))) + 1);
-  const SrgbTables& tables = srgbTables();
   const ImageRgba8* previous = &base;
   while (previous->width > 1 || previous->height > 1) {
     levels.push_back(halve(*previous, tables));
@@ -94,5 +93,11 @@ std::vector<ImageRgba8> srgbMipLevels(const ImageRgba8& base) {
   }
   return levels;
 }
+
+}  // namespace
+
+std::vector<ImageRgba8> srgbMipLevels(const ImageRgba8& base) { return mipLevels(base, &srgbTables()); }
+
+std::vector<ImageRgba8> linearMipLevels(const ImageRgba8& base) { return mipLevels(base, nullptr); }
 
 }  // namespace sdg

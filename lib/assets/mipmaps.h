@@ -1,5 +1,5 @@
 #pragma once
-// The mip chain of an sRGB8 texture, filtered on the CPU in linear light.
+// The mip chain of an 8-bit texture, filtered on the CPU (colour in linear light).
 // Why not glGenerateMipmap: llvmpipe JIT-compiles a blit shader the first
 // time it runs (about 100 ms, more than a whole frame), and a CPU chain is
 // the same on every driver.
@@ -16,5 +16,8 @@ namespace sdg {
 // is averaged as linear light (the sRGB curve undone, then redone, rounding
 // to the nearest code); alpha is averaged as stored.
 std::vector<ImageRgba8> srgbMipLevels(const ImageRgba8& base);
+// The same for data textures (roughness, metallic, normal and opacity
+// maps): every channel averaged as stored.
+std::vector<ImageRgba8> linearMipLevels(const ImageRgba8& base);
 
 }  // namespace sdg

@@ -1,6 +1,7 @@
 #pragma once
 // The buffers one camera's frame produces, rows top to bottom. Buffers are
 // reused from frame to frame (no per-frame allocation once sized).
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>

@@ -1,5 +1,6 @@
 #include "render/render_list.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/text.h"
@@ -42,12 +43,30 @@ RenderMaterial materialOf(const Stage& stage, const Prim& prim) {
   }
   m.fromPrim = true;
   m.baseColor = material->value("inputs:diffuse_color_constant")->get<Vec3f>();
-  m.texture = material->getString("inputs:diffuse_texture");
+  m.maps.baseColor = material->getString("inputs:diffuse_texture");
+  m.maps.roughness = material->getString("inputs:reflectionroughness_texture");
+  m.maps.metallic = material->getString("inputs:metallic_texture");
+  if (material->getBool("inputs:enable_ORM_texture")) m.maps.orm = material->getString("inputs:ORM_texture");
+  m.maps.normal = material->getString("inputs:normalmap_texture");
   m.textureScale = material->value("inputs:texture_scale")->get<Vec2f>();
   m.textureRotate = material->getFloat("inputs:texture_rotate");
   m.projectUvw = material->getBool("inputs:project_uvw");
   m.roughness = material->getFloat("inputs:reflection_roughness_constant");
   m.metallic = material->getFloat("inputs:metallic_constant");
+  m.roughnessInfluence = std::min(material->getFloat("inputs:reflection_roughness_texture_influence"), 1.0f);
+  m.metallicInfluence = std::min(material->getFloat("inputs:metallic_texture_influence"), 1.0f);
+  m.normalScale = material->getFloat("inputs:bump_factor");
+  m.specularLevel = std::min(material->getFloat("inputs:specular_level"), 1.0f);
+  if (material->getBool("inputs:enable_opacity")) {
+    m.opacityConstant = material->getFloat("inputs:opacity_constant");
+    const bool mapped = material->getBool("inputs:enable_opacity_texture");
+    if (mapped) m.maps.opacity = material->getString("inputs:opacity_texture");
+    m.opacity = m.maps.opacity.empty() ? OpacitySource::Constant : OpacitySource::OpacityMap;
+    // OmniPBR's threshold 0 means fractional opacity, which neither renderer
+    // blends: it is cut at one half.
+    const float threshold = material->getFloat("inputs:opacity_threshold");
+    m.opacityCutoff = threshold > 0.0f ? threshold : 0.5f;
+  }
   return m;
 }
 
@@ -86,6 +105,11 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
     default:
       l.kind = LightKind::Dome;
       l.texture = prim.getString("inputs:texture:file");
+      // USD's DomeLight_1 with poleAxis "scene": the map's pole follows the
+      // stage's up axis, so on a Z-up stage the dome is first turned +90
+      // degrees about X (its +Y to +Z), as Isaac Sim shows it.
+      if (stage.metadata().upAxis == "Z")
+        l.worldRotation = l.worldRotation * Eigen::AngleAxisd(M_PI / 2, Vec3d::UnitX()).toRotationMatrix();
       break;
   }
   return l;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "assets/mesh_data.h"
 #include "assets/mesh_source.h"
 #include "stage/stage.h"
 
@@ -28,15 +29,27 @@ struct RenderCamera {
 };
 
 
+// The OmniPBR-like material both renderers shade with (docs/rendering.md,
+// "Materials"). A prim's bound Material fills it; without one, displayColor
+// and the mesh file's own materials (MeshPart) apply.
 struct RenderMaterial {
   bool fromPrim = false;  // a Material prim is bound; otherwise the mesh file's or displayColor
   Vec3f baseColor{0.5f, 0.5f, 0.5f};
-  std::string texture;    // as written in the scene; "" for none
+  MaterialMaps maps;      // as written in the scene; "" for none
   Vec2f textureScale{1.0f, 1.0f};
   float textureRotate = 0.0f;  // degrees
   bool projectUvw = false;
   float roughness = 0.5f;
   float metallic = 0.0f;
+  // OmniPBR's map influences: value = mix(constant, map, influence).
+  float roughnessInfluence = 0.0f;
+  float metallicInfluence = 0.0f;
+  float normalScale = 1.0f;  // bump_factor
+  float specularLevel = 0.5f;  // a dielectric's F0 = 0.08 level, F90 = 2 level
+  OpacitySource opacity = OpacitySource::None;
+  float opacityConstant = 1.0f;
+  float opacityCutoff = 0.5f;  // drawn where opacity >= this
+  bool cutOut() const { return opacity != OpacitySource::None; }
 };
 
 struct RenderItem {
@@ -57,7 +70,10 @@ struct RenderLight {
   Vec3f radiance{1, 1, 1};  // intensity * 2^exposure * color
   Vec3d position = Vec3d::Zero();
   Vec3d direction = -Vec3d::UnitZ();  // the light's local -Z in world space
-  Matrix3d worldRotation = Matrix3d::Identity();  // orients a dome's texture
+  // A dome's frame in the world: its texture's pole (+Y in the lat-long
+  // convention, render/latlong.h) turned to the stage's up axis, then the
+  // prim's rotation.
+  Matrix3d worldRotation = Matrix3d::Identity();
   float radius = 0.0f;  // sphere, disk, cylinder
   float width = 0.0f, height = 0.0f, length = 0.0f;
   float angle = 0.0f;   // distant: angular diameter (degrees)

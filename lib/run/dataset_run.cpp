@@ -13,7 +13,7 @@
 #include "core/file_io.h"
 #include "core/log.h"
 #include "core/recycler.h"
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 #include "run/dataset_finalize.h"
 #include "run/preroll.h"
 #include "run/progress.h"

@@ -3,7 +3,7 @@
 #include "core/diagnostics.h"
 #include "core/file_io.h"
 #include "core/text.h"
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 #include "writers/png_encoder.h"
 
 namespace sdg {

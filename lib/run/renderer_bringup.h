@@ -18,7 +18,7 @@
 #include <thread>
 #include <vector>
 
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 
 namespace sdg {
 

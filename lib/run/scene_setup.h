@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "assets/asset_resolver.h"
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 #include "behavior/registry.h"
 #include "behavior/behavior.h"
 #include "physics/physics_settings.h"

@@ -7,6 +7,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include "assets/asset_resolver.h"
 #include "behaviors/look_at_math.h"
 #include "behaviors/scene_utils.h"
 #include "core/log.h"
@@ -450,6 +451,18 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
       .def("next_free_path",
            [](StageHandle& s, const std::string& path) { return nextFreePath(s.ctx->liveStage(), path); },
            py::arg("path"))
+      .def(
+          "resolve_asset",
+          [](StageHandle& s, const std::string& path) -> py::object {
+            s.ctx->liveStage();
+            if (!s.ctx->assets) return py::none();
+            std::optional<std::string> resolved = s.ctx->assets->resolve(path);
+            if (!resolved) resolved = s.ctx->assets->resolveFolder(path);
+            return resolved ? py::object(py::str(*resolved)) : py::object(py::none());
+          },
+          py::arg("path"),
+          "The absolute path of a file or folder named as the scene names assets (absolute, or below the scene's "
+          "folder, its asset_roots or an --asset-root), or None when none exists.")
       .def_property_readonly("meters_per_unit",
                              [](StageHandle& s) { return s.ctx->liveStage().metadata().metersPerUnit; })
       .def_property_readonly("up_axis", [](StageHandle& s) { return s.ctx->liveStage().metadata().upAxis; })

@@ -27,6 +27,7 @@ void ScriptBehavior::onInit() {
   ScriptContext& c = *ctx_;
   c.stage = &stage();
   c.events = &events();
+  c.assets = context().assets;
   c.spec = &spec();
   c.primPath = primPath();
   c.runSeed = context().runSeed;

@@ -13,11 +13,16 @@
 #include "stage/behavior_spec.h"
 #include "stage/stage.h"
 
+namespace sdg {
+class AssetResolver;
+}
+
 namespace sdg::scripting {
 
 struct ScriptContext {
   Stage* stage = nullptr;
   EventBus* events = nullptr;
+  const AssetResolver* assets = nullptr;  // the scene's search roots
   const BehaviorSpec* spec = nullptr;
   std::string primPath;
   std::string rngStream;  // RNG_STREAM, else BEHAVIOR_NS

@@ -132,19 +132,41 @@ std::vector<PrimTypeInfo> buildTable() {
                           positive(attr("inputs:radius", Value::makeFloat(0.5f), "Radius."))})});
   t.push_back({PrimType::DomeLight, "DomeLight", true, false, true,
                "Light from every direction: a uniform colour or a lat-long texture.",
-               lightWith({fileAttr("inputs:texture:file", FileKind::Image, "Lat-long environment texture (PNG)."),
+               lightWith({fileAttr("inputs:texture:file", FileKind::Image,
+                                   "Lat-long environment map: EXR or HDR for real sky brightness (linear), or an "
+                                   "8-bit image (sRGB). Its pole follows the stage's up axis."),
                           tokenAttr("inputs:texture:format", "automatic",
                                     {"automatic", "latlong", "mirroredBall", "angular", "cubeMapVerticalCross"},
                                     "Layout of the texture.")})});
   t.push_back({PrimType::Material, "Material", false, false, false,
                "An OmniPBR-like surface material, bound to prims with `material:`.",
                {attr("inputs:diffuse_color_constant", Value::makeColor3f(Vec3f(0.2f, 0.2f, 0.2f)), "Base colour when no texture is set."),
-                fileAttr("inputs:diffuse_texture", FileKind::Image, "Base colour texture (PNG)."),
+                fileAttr("inputs:diffuse_texture", FileKind::Image, "Base colour texture (sRGB if 8 or 16 bits, linear if float)."),
                 positive(attr("inputs:texture_scale", Value::makeFloat2(1.0f, 1.0f), "UV scale of the texture.")),
                 attr("inputs:texture_rotate", Value::makeFloat(0.0f), "Rotation of the texture (degrees)."),
                 attr("inputs:project_uvw", Value::makeBool(false), "Project the texture in world space (triplanar) instead of using UVs."),
                 positive(attr("inputs:reflection_roughness_constant", Value::makeFloat(0.5f), "Surface roughness, 0 (mirror) to 1 (matte).")),
-                positive(attr("inputs:metallic_constant", Value::makeFloat(0.0f), "Metalness, 0 to 1."))}});
+                positive(attr("inputs:metallic_constant", Value::makeFloat(0.0f), "Metalness, 0 to 1.")),
+                positive(attr("inputs:specular_level", Value::makeFloat(0.5f),
+                              "Strength of a dielectric's reflection: 0.5 reflects 4 % head-on, 0 none (pure diffuse).")),
+                fileAttr("inputs:reflectionroughness_texture", FileKind::Image, "Roughness map (linear, red channel)."),
+                positive(attr("inputs:reflection_roughness_texture_influence", Value::makeFloat(0.0f),
+                              "How much the roughness map replaces the constant, 0 to 1 (OmniPBR's default 0: set 1 to use the map).")),
+                fileAttr("inputs:metallic_texture", FileKind::Image, "Metallic map (linear, red channel)."),
+                positive(attr("inputs:metallic_texture_influence", Value::makeFloat(0.0f),
+                              "How much the metallic map replaces the constant, 0 to 1 (OmniPBR's default 0: set 1 to use the map).")),
+                attr("inputs:enable_ORM_texture", Value::makeBool(false), "Read roughness and metallic from ORM_texture instead."),
+                fileAttr("inputs:ORM_texture", FileKind::Image,
+                         "Occlusion-roughness-metallic map (linear): roughness in green, metallic in blue."),
+                fileAttr("inputs:normalmap_texture", FileKind::Image,
+                         "Tangent-space normal map (linear, +Y up as in OpenGL and glTF); UV-mapped materials only."),
+                positive(attr("inputs:bump_factor", Value::makeFloat(1.0f), "Strength of the normal map.")),
+                attr("inputs:enable_opacity", Value::makeBool(false), "Cut the surface out where its opacity is below the threshold."),
+                attr("inputs:enable_opacity_texture", Value::makeBool(false), "Take the opacity from opacity_texture."),
+                positive(attr("inputs:opacity_constant", Value::makeFloat(1.0f), "Opacity, multiplied by the map's value.")),
+                fileAttr("inputs:opacity_texture", FileKind::Image, "Opacity map (linear, red channel)."),
+                positive(attr("inputs:opacity_threshold", Value::makeFloat(0.0f),
+                              "Drawn where opacity >= this; 0 (OmniPBR's fractional mode) cuts at 0.5."))}});
   return t;
 }
 

@@ -16,8 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/gl_context.h"
-#include "render/renderer.h"
+#include "render/raster/gl_context.h"
+#include "render/raster/renderer.h"
 #include "run/scene_setup.h"
 
 namespace sdg::studio {

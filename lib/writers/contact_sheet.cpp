@@ -178,7 +178,7 @@ std::vector<uint8_t> composeContactSheet(const std::vector<std::string>& tileFil
   };
   std::vector<Tile> tiles;
   for (const std::string& file : tileFiles) {
-    ImageRgba8 image = loadPng(file);
+    ImageRgba8 image = loadImageRgba8(file, TextureData::Color);
     Tile t{int(image.width), int(image.height), std::vector<uint8_t>(size_t(image.width) * image.height * 3)};
     for (size_t p = 0; p < size_t(image.width) * image.height; ++p) std::copy_n(&image.pixels[p * 4], 3, &t.rgb[p * 3]);
     tiles.push_back(std::move(t));

@@ -44,22 +44,48 @@ TEST_CASE("asset resolver: Isaac paths are tried below the Isaac root first", "[
   CHECK(AssetResolver({"scenes"}).candidates("/Isaac/Props/box.glb").size() == 2);
 }
 
-TEST_CASE("file problems: URL, USD, non-PNG texture, missing, empty, fine", "[assets]") {
+TEST_CASE("file problems: URL, USD, missing, empty, fine", "[assets]") {
   fs::path dir = scratchFolder("problems");
-  writeFile(dir / "ok.png", "\x89PNG");
   writeFile(dir / "empty.png", "");
   writeFile(dir / "box.glb", "glTF");
+  fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "ok.png");
   AssetResolver r({dir.string()});
   CHECK(fileProblem("https://example.com/a.png", FileKind::Image, r)->find("is a URL") != std::string::npos);
   CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("is a USD file, which sdgbehave cannot read") !=
         std::string::npos);
-  CHECK(fileProblem("a.JPG", FileKind::Image, r)->find("reads PNG textures only, found a '.jpg'") != std::string::npos);
   std::string missing = *fileProblem("nope.png", FileKind::Image, r);
   CHECK(missing.find("texture 'nope.png' not found; searched: " + (dir / "nope.png").string()) == 0);
   CHECK(fileProblem("empty.png", FileKind::Image, r)->find("cannot be read: it is empty") != std::string::npos);
   CHECK_FALSE(fileProblem("ok.png", FileKind::Image, r));
   CHECK_FALSE(fileProblem("box.glb#carton", FileKind::Mesh, r));  // '#label' is not part of the name
   CHECK(fileProblem("/Isaac/x.png", FileKind::Image, r)->find("none is set") != std::string::npos);
+}
+
+TEST_CASE("file problems: a texture is any image whose header reads, whatever its name says", "[assets]") {
+  fs::path dir = scratchFolder("images");
+  const std::string images = SDG_SOURCE_DIR "/tests/data/images/";
+  fs::copy_file(images + "formats/pattern.jpg", dir / "photo.JPG");
+  fs::copy_file(images + "formats/pattern_half.exr", dir / "sky.exr");
+  fs::copy_file(images + "formats/pattern.png", dir / "named_wrong.jpg");  // the bytes decide
+  fs::copy_file(images + "corrupt/huge_header.png", dir / "huge.png");
+  fs::copy_file(images + "corrupt/truncated.png", dir / "truncated.png");
+  writeFile(dir / "fake.exr", "not an image");
+  writeFile(dir / "notes.txt", "not an image either");
+  AssetResolver r({dir.string()});
+  for (const char* fine : {"photo.JPG", "sky.exr", "named_wrong.jpg"}) {
+    CAPTURE(fine);
+    CHECK_FALSE(fileProblem(fine, FileKind::Image, r));
+  }
+  // Only the header is read: the cut-off pixel data is found by a run.
+  CHECK_FALSE(fileProblem("truncated.png", FileKind::Image, r));
+  const std::string fake = (dir / "fake.exr").string();
+  CHECK(*fileProblem("fake.exr", FileKind::Image, r) ==
+        "texture 'fake.exr' (" + fake + "): not a readable OpenEXR image: \"" + fake + "\" is not an OpenEXR file");
+  CHECK(fileProblem("notes.txt", FileKind::Image, r)->find("(" + (dir / "notes.txt").string() +
+                                                           "): not an image sdgbehave can read") != std::string::npos);
+  CHECK(fileProblem("huge.png", FileKind::Image, r)->find("declares 20000 x 20000 pixels") != std::string::npos);
+  // Other kinds of file are not opened as images.
+  CHECK_FALSE(fileProblem("notes.txt", FileKind::Any, r));
 }
 
 TEST_CASE("file entries: Isaac defaults nobody wrote are left out without a root", "[assets]") {

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The example behavior scripts (scenes/examples/scripts/camera_orbit.py,
-material_randomizer.py, distractor_scatter.py) run from their example scenes,
-reproducibly, and do what their docstrings say.
+material_randomizer.py, distractor_scatter.py, dome_randomizer.py) run from
+their example scenes, reproducibly, and do what their docstrings say.
 
 For each scene:
 - a run with --threads 1 and one with --threads 2 (same seed) write
@@ -406,8 +406,42 @@ def check_distractor_scatter(scene, prims, record, dataset):
     return f"{len(created)} distractors inside the volume in {len(record.states)} frames, {boxes} labelled boxes"
 
 
+def check_dome_randomizer(scene, prims, record, dataset):
+    owners = [p for p in prims.values() if "domeRandomizer" in p.behaviors]
+    if len(owners) != 1:
+        fail(scene, f"expected one prim with domeRandomizer, found {len(owners)}")
+        return "no owner"
+    owner, v = owners[0], owners[0].behaviors["domeRandomizer"]
+    check_only_under(scene, record, [owner.path])
+    maps = set(v["textures:assets"])
+    low, high = v["intensityRange"]
+    seen, turns = set(), set()
+    for frame, state in enumerate(record.states):
+        where = f"frame {frame}"
+        texture = value_of(state, (owner.path, "inputs:texture:file"))
+        if texture not in maps:
+            fail(scene, f"{where}: texture {texture!r} is not one of {sorted(maps)}")
+        seen.add(texture)
+        intensity = value_of(state, (owner.path, "inputs:intensity"))
+        if intensity is None or not within(intensity, low, high):
+            fail(scene, f"{where}: intensity {intensity} outside {low} .. {high}")
+        orient = value_of(state, (owner.path, "xformOp:orient"))
+        # A turn about the stage's up axis (Z): a quaternion (w, 0, 0, z).
+        if orient is None or abs(orient[1]) > 1e-6 or abs(orient[2]) > 1e-6:
+            fail(scene, f"{where}: orient {orient} is not a turn about Z")
+        else:
+            turns.add(round(math.degrees(2 * math.atan2(orient[3], orient[0])) % 360, 3))
+    if len(seen) < 2 or len(turns) < len(record.states):
+        fail(scene, f"the sky hardly changed: maps {sorted(seen)}, turns {sorted(turns)}")
+    pictures = [open(f, "rb").read() for f in sorted(glob.glob(os.path.join(dataset, "rgb_*.png")))]
+    if len(set(pictures)) != len(pictures):
+        fail(scene, "two frames rendered the same picture")
+    return f"{len(seen)} maps, {len(turns)} turns, intensities within range in {len(record.states)} frames"
+
+
 SCENES = {
     "camera_orbit.yaml": check_camera_orbit,
+    "dome_randomizer.yaml": check_dome_randomizer,
     "material_randomizer.yaml": check_material_randomizer,
     "distractor_scatter.yaml": check_distractor_scatter,
 }

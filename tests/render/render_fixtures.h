@@ -6,7 +6,7 @@
 
 #include "assets/asset_resolver.h"
 #include "behaviors/builtin_behaviors.h"
-#include "render/renderer.h"
+#include "render/raster/renderer.h"
 #include "scene_io/scene_loader.h"
 
 namespace sdg::test {

@@ -261,16 +261,17 @@ prims:
   CHECK(shot.red(55, 50) > 100);  // the card itself at x = +0.5: lit
 }
 
-TEST_CASE("render: a dome light's lat-long texture shows behind the scene, +Y up", "[render][analytic][dome]") {
+TEST_CASE("render: a dome light's lat-long texture shows behind the scene, its pole up", "[render][analytic][dome]") {
   RenderSettings settings;
   settings.width = settings.height = 64;
-  // sky.png: top half blue, bottom half green. The camera looks along -Z
-  // with +Y up, so the top of the image is the dome's upper hemisphere.
+  // sky.png: top half blue, bottom half green. On a Z-up stage the map's
+  // pole is +Z; the camera looks along +Y with +Z up, so the top of the
+  // picture is the dome's upper hemisphere.
   auto r = test::renderYaml(R"(
 version: 1
 prims:
   /Sky: {type: DomeLight, inputs:intensity: 2000, inputs:texture:file: images/sky.png}
-  /Cam: {type: Camera, focalLength: 10}
+  /Cam: {type: Camera, focalLength: 10, rotateXYZ: [90, 0, 0]}
 )",
                             settings);
   auto px = [&](int x, int y, int c) { return int(r.frame.rgba[(size_t(y) * 64 + size_t(x)) * 4 + size_t(c)]); };

@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include "render/camera_math.h"
-#include "render/instance_batches.h"
-#include "render/shadow_casters.h"
-#include "render/shadow_frusta.h"
+#include "render/raster/instance_batches.h"
+#include "render/raster/shadow_casters.h"
+#include "render/raster/shadow_frusta.h"
 
 using namespace sdg;
 
@@ -15,7 +15,7 @@ namespace {
 RenderItem item(uint32_t id, const std::string& texture = "", bool fromPrim = false, double x = 0) {
   RenderItem it;
   it.instanceId = id;
-  it.material.texture = texture;
+  it.material.maps.baseColor = texture;
   it.material.fromPrim = fromPrim;
   it.worldFromLocal(0, 3) = x;
   return it;
@@ -63,7 +63,7 @@ TEST_CASE("instance batches: a material source or texture splits a mesh's run", 
   for (const InstanceBatch& b : batches.byMaterial())
     for (uint32_t k = b.first; k < b.first + b.count; ++k) {
       const RenderItem& it = list.items[batches.records()[k].id - 1];
-      CHECK(it.material.texture == list.items[b.item].material.texture);
+      CHECK(it.material.maps == list.items[b.item].material.maps);
       CHECK(it.material.fromPrim == list.items[b.item].material.fromPrim);
     }
 }

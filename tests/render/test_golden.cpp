@@ -44,7 +44,7 @@ void compareWithGolden(const std::string& scene, const std::string& golden) {
     WARN("golden image updated: " << golden);
     return;
   }
-  ImageRgba8 expected = loadPng(golden);
+  ImageRgba8 expected = loadImageRgba8(golden, TextureData::Color);
   REQUIRE(expected.width == uint32_t(frame.width));
   REQUIRE(expected.height == uint32_t(frame.height));
   int worst = 0;

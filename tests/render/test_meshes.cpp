@@ -62,21 +62,21 @@ TEST_CASE("meshes: bad files fail with the file named", "[render][meshes]") {
 }
 
 TEST_CASE("textures: PNG variants load as RGBA8; absurd sizes and corrupt files are refused", "[render][textures]") {
-  ImageRgba8 split = loadPng(SDG_SOURCE_DIR "/tests/data/images/split.png");
+  ImageRgba8 split = loadImageRgba8(SDG_SOURCE_DIR "/tests/data/images/split.png", TextureData::Color);
   CHECK(split.width == 64);
   CHECK(split.pixels.size() == 64u * 64u * 4u);
   CHECK(split.pixels[0] == 220);  // red half
   CHECK(split.pixels[3] == 255);
   for (const char* name : {"grey16.png", "palette.png", "grey_alpha.png"}) {
     CAPTURE(name);
-    ImageRgba8 image = loadPng(std::string(SDG_SOURCE_DIR "/tests/data/images/") + name);
+    ImageRgba8 image = loadImageRgba8(std::string(SDG_SOURCE_DIR "/tests/data/images/") + name, TextureData::Color);
     CHECK(image.width == 8);
     CHECK(image.pixels.size() == 8u * 8u * 4u);
   }
-  CHECK_THROWS_WITH(loadPng(SDG_SOURCE_DIR "/tests/data/images/huge_header.png"),
+  CHECK_THROWS_WITH(loadImageRgba8(SDG_SOURCE_DIR "/tests/data/images/huge_header.png", TextureData::Color),
                     Catch::Contains("declares 100000 x 100000 pixels"));
   std::string corrupt = writeTemp("corrupt.png", "\x89PNG\r\n\x1a\nnot really");
-  CHECK_THROWS_WITH(loadPng(corrupt), Catch::Contains(corrupt));
+  CHECK_THROWS_WITH(loadImageRgba8(corrupt, TextureData::Color), Catch::Contains(corrupt));
 }
 
 TEST_CASE("primitives: USD default sizes and axes", "[render][meshes]") {

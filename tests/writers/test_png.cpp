@@ -1,5 +1,5 @@
-// PNG encoding: each pixel format reads back (through the project's own
-// libpng reader, which expands to RGBA8) with the values written.
+// PNG encoding: each pixel format reads back (through the image reader,
+// which expands to RGBA8) with the values written.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -14,7 +14,7 @@ namespace {
 ImageRgba8 roundTrip(const std::vector<uint8_t>& png) {
   auto path = std::filesystem::temp_directory_path() / "sdg_png_roundtrip.png";
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-  return loadPng(path.string());
+  return loadImageRgba8(path.string(), TextureData::Color);
 }
 }  // namespace
 

@@ -1,0 +1,404 @@
+#include "render/pathtrace/path_tracer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <thread>
+
+#include "assets/image.h"
+#include "assets/mesh_source.h"
+#include "core/diagnostics.h"
+#include "render/camera_math.h"
+#include "render/pathtrace/embree_scene.h"
+#include "render/pathtrace/pt_lights.h"
+#include "render/pathtrace/pt_materials.h"
+#include "render/pathtrace/pt_textures.h"
+#include "render/pathtrace/sampler.h"
+
+namespace sdg {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kTileSize = 16;
+// Domes whose maps stay loaded, as in the rasterizer: a randomizer cycling
+// through a few does not read them again.
+constexpr size_t kMaxCachedDomes = 8;
+// Russian roulette starts at this vertex (0 is the first hit).
+constexpr int kRouletteDepth = 3;
+
+// New rays leave a surface from a point pushed off it along the geometric
+// normal, on the side they go to: far enough that rounding in the hit
+// point (a few ulps of its coordinates) cannot put the origin behind the
+// surface, and scaled with the coordinates for that reason.
+Vec3f offsetOrigin(const Vec3f& p, const Vec3f& sideNormal) {
+  const float scale = std::max(1.0f, p.cwiseAbs().maxCoeff());
+  return p + sideNormal * (2e-5f * scale);
+}
+
+// Primary rays through the rasterizer's projection (camera_math.h): a point
+// of the image is taken back to the near and far clipping planes, so
+// perspective, orthographic, aperture offsets and the clipping range all
+// follow the matrices the rasterizer draws with.
+class CameraRays {
+ public:
+  CameraRays(const RenderCamera& camera, int width, int height)
+      : cameraFromClip_(projectionMatrix(camera, width, height).inverse()),
+        rotation_(camera.worldFromCamera.block<3, 3>(0, 0)),
+        eye_(camera.worldFromCamera.block<3, 1>(0, 3)),
+        width_(width),
+        height_(height) {}
+
+  // The ray through image point (px, py): x right, y down, in pixels.
+  PtRay ray(double px, double py) const {
+    const double x = 2.0 * px / width_ - 1.0, y = 1.0 - 2.0 * py / height_;
+    Eigen::Vector4d nearPoint = cameraFromClip_ * Eigen::Vector4d(x, y, -1.0, 1.0);
+    Eigen::Vector4d farPoint = cameraFromClip_ * Eigen::Vector4d(x, y, 1.0, 1.0);
+    const Vec3d a = nearPoint.head<3>() / nearPoint.w(), b = farPoint.head<3>() / farPoint.w();
+    const Vec3d along = b - a;
+    const double length = along.norm();
+    PtRay r;
+    r.origin = (rotation_ * a + eye_).cast<float>();
+    r.direction = (rotation_ * (along / length)).cast<float>();
+    r.tMin = 0.0f;
+    r.tMax = float(length);
+    return r;
+  }
+  Vec3f eye() const { return eye_.cast<float>(); }
+
+ private:
+  Matrix4d cameraFromClip_;
+  Eigen::Matrix3d rotation_;
+  Vec3d eye_;
+  double width_, height_;
+};
+
+}  // namespace
+
+struct PathTracer::Caches {
+  explicit Caches(const AssetResolver& assets) : textures(assets) {}
+  EmbreeScene scene;
+  PtTextureCache textures;
+  std::map<std::string, uint32_t> meshes;  // RenderItem::meshId -> EmbreeScene mesh
+  std::map<std::string, std::unique_ptr<PtDomeMap>> domes;
+};
+
+// Everything one render() reads while its threads run: the instances'
+// materials and ids, the lights. Also the cut-out test Embree's filters
+// call.
+struct PtFrameData final : CutOutTest {
+  const EmbreeScene* scene = nullptr;
+  std::vector<uint32_t> materialOffset;  // per instance, into `materials`
+  std::vector<uint32_t> partCount;       // per instance
+  std::vector<uint32_t> instanceIds;     // per instance: RenderItem::instanceId
+  std::vector<SurfaceMaterial> materials;
+  bool anyCutOut = false;
+  PtLights lights;
+
+  const SurfaceMaterial& material(uint32_t instance, uint32_t part) const {
+    return materials[materialOffset[instance] + std::min(part, partCount[instance] - 1)];
+  }
+  bool opaqueAt(uint32_t instance, uint32_t triangle, float u, float v) const override {
+    const SurfaceGeometry g = scene->geometry(SurfaceHit{instance, triangle, u, v, 0.0f});
+    return surfaceOpaque(material(instance, g.part), g);
+  }
+  const CutOutTest* cutOuts() const { return anyCutOut ? this : nullptr; }
+};
+
+PathTracer::PathTracer(const AssetResolver& assets, const PathTraceSettings& settings)
+    : assets_(assets), settings_(settings), caches_(std::make_unique<Caches>(assets)) {
+  settings_.samples = std::max(settings_.samples, 1);
+  settings_.maxBounces = std::max(settings_.maxBounces, 0);
+  if (settings_.threads <= 0) settings_.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+PathTracer::~PathTracer() = default;
+
+void PathTracer::prepare(const RenderList& list, PtFrameData& frame) {
+  Caches& c = *caches_;
+  frame.scene = &c.scene;
+  std::vector<SceneInstance> instances(list.items.size());
+  for (size_t i = 0; i < list.items.size(); ++i) {
+    const RenderItem& item = list.items[i];
+    auto found = c.meshes.find(item.meshId);
+    if (found == c.meshes.end()) {
+      MeshData data = meshDataFor(item.mesh, assets_, item.primPath);
+      c.textures.addEmbedded(data.embeddedImages);
+      data.embeddedImages.clear();
+      found = c.meshes.emplace(item.meshId, c.scene.addMesh(std::move(data))).first;
+    }
+    const MeshData& mesh = c.scene.mesh(found->second);
+    frame.materialOffset.push_back(uint32_t(frame.materials.size()));
+    frame.instanceIds.push_back(item.instanceId);
+    bool cutOut = false;
+    const std::vector<MeshPart> defaultPart(mesh.parts.empty() ? 1 : 0);
+    for (const MeshPart& part : mesh.parts.empty() ? defaultPart : mesh.parts) {
+      frame.materials.push_back(resolveSurfaceMaterial(item, part, c.textures));
+      cutOut = cutOut || frame.materials.back().cutOut();
+    }
+    frame.partCount.push_back(uint32_t(frame.materials.size() - frame.materialOffset.back()));
+    instances[i] = SceneInstance{found->second, item.worldFromLocal, cutOut};
+    frame.anyCutOut = frame.anyCutOut || cutOut;
+  }
+  c.scene.setInstances(instances);
+  frame.lights.build(list, c.scene.bounds(), [&](const RenderLight& light) -> const PtDomeMap* {
+    auto it = c.domes.find(light.texture);
+    if (it != c.domes.end()) return it->second.get();
+    ImageRgbaF map;
+    try {
+      std::optional<std::string> resolved = assets_.resolve(light.texture);
+      if (!resolved)
+        throw RunError("texture '" + light.texture + "' not found; " + assets_.describeSearch(light.texture));
+      map = loadImageLinear(*resolved);
+    } catch (const RunError& e) {
+      throw RunError(light.path + ": " + e.what());
+    }
+    if (c.domes.size() >= kMaxCachedDomes) c.domes.erase(c.domes.begin());  // any: which one is not visible
+    return c.domes.emplace(light.texture, std::make_unique<PtDomeMap>(std::move(map))).first->second.get();
+  });
+}
+
+namespace {
+
+struct TraceCounters {
+  uint64_t rays = 0, cameraRays = 0, dropped = 0;
+};
+
+// One path's radiance: pbrt-v4's PathIntegrator::Li with this renderer's
+// lights and surfaces. Each vertex draws its numbers in a fixed order, used
+// or not (light pick, light direction, BSDF lobe, BSDF direction,
+// roulette), after the camera's jitter, so a sample's slots mean the same
+// on every path.
+Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSampler& sampler, TraceCounters& counters) {
+  const EmbreeScene& scene = *frame.scene;
+  const CutOutTest* cutOuts = frame.cutOuts();
+  const PtLights& lights = frame.lights;
+  Vec3f radiance = Vec3f::Zero();
+  Vec3f beta = Vec3f::Ones();  // the path's throughput
+  // The previous vertex, for the MIS weight of light that a BSDF sample finds.
+  float bsdfPdf = 0.0f;
+  Vec3f previousPoint = Vec3f::Zero(), previousNormal = Vec3f::Zero();
+  for (int depth = 0;; ++depth) {
+    SurfaceHit hit;
+    const bool onSurface = scene.intersect(ray, cutOuts, hit);
+    ++counters.rays;
+    // A light shape in front of the surface: its emission, and the path ends.
+    PtRay toLights = ray;
+    if (onSurface) toLights.tMax = hit.t;
+    LightHit lightHit;
+    if (lights.intersect(toLights, lightHit)) {
+      const float weight =
+          depth == 0 ? 1.0f
+                     : powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint, previousNormal, ray.direction));
+      radiance += beta.cwiseProduct(lightHit.radiance) * weight;
+      break;
+    }
+    if (!onSurface) {
+      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, depth == 0 ? 0.0f : bsdfPdf));
+      break;
+    }
+    if (depth == maxBounces) break;
+    const float uPick = sampler.next1D();
+    const Vec2f uLight = sampler.next2D();
+    const float uLobe = sampler.next1D();
+    const Vec2f uBsdf = sampler.next2D();
+    const float uRoulette = sampler.next1D();
+
+    const SurfaceGeometry g = scene.geometry(hit);
+    const Vec3f wo = -ray.direction;
+    const ShadedSurface surface = shadeSurface(frame.material(hit.instance, g.part), g, wo);
+    // The geometric normal on the viewer's side: reflected light must stay
+    // on this side (pbrt-v3's test; a shading normal alone would let light
+    // through the surface).
+    const Vec3f side = g.geometricNormal.dot(wo) < 0.0f ? Vec3f(-g.geometricNormal) : g.geometricNormal;
+    const ShadingFrame shading = ShadingFrame::fromNormal(surface.normal);
+    const PbrBsdf bsdf(surface.material);
+    const Vec3f woLocal = shading.toLocal(wo);
+    const Vec3f origin = offsetOrigin(g.position, side);
+
+    // Next-event estimation: one light, one direction, one shadow ray.
+    LightSample light;
+    if (lights.sample(g.position, surface.normal, uPick, uLight, light) && light.direction.dot(side) > 0.0f) {
+      const Vec3f wiLocal = shading.toLocal(light.direction);
+      const Vec3f f = bsdf.eval(woLocal, wiLocal);
+      if (f.maxCoeff() > 0.0f) {
+        const PtRay shadow{origin, light.direction, 0.0f,
+                           std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)};
+        ++counters.rays;
+        if (!scene.occluded(shadow, cutOuts) && !lights.blocks(shadow, light.light)) {
+          const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdf.pdf(woLocal, wiLocal));
+          radiance += beta.cwiseProduct(f).cwiseProduct(light.radiance) * (weight / light.pdf);
+        }
+      }
+    }
+
+    // The BSDF's direction continues the path.
+    const std::optional<BsdfSample> next = bsdf.sample(woLocal, uBsdf, uLobe);
+    if (!next) break;
+    const Vec3f wi = shading.toWorld(next->wi).normalized();
+    if (!(wi.dot(side) > 0.0f)) break;
+    beta = beta.cwiseProduct(next->weight);
+    bsdfPdf = next->pdf;
+    previousPoint = g.position;
+    previousNormal = surface.normal;
+    if (depth >= kRouletteDepth) {
+      // pbrt-v4: continue with the probability of the throughput's largest
+      // component (when below 1), and weigh the survivors up.
+      const float q = std::max(0.0f, 1.0f - beta.maxCoeff());
+      if (uRoulette < q) break;
+      beta /= 1.0f - q;
+    }
+    ray = PtRay{origin, wi, 0.0f, kInf};
+  }
+  return radiance;
+}
+
+// The label planes of one pixel, from the ray through its centre.
+void traceLabels(const PtFrameData& frame, const PtRay& ray, const Vec3f& eye, size_t pixel, PathTracedFrame& out) {
+  SurfaceHit hit;
+  if (!frame.scene->intersect(ray, frame.cutOuts(), hit)) return;
+  const SurfaceGeometry g = frame.scene->geometry(hit);
+  const ShadedSurface surface = shadeSurface(frame.material(hit.instance, g.part), g, -ray.direction);
+  for (int c = 0; c < 3; ++c) {
+    out.albedo[3 * pixel + size_t(c)] = surface.albedo[c];
+    out.normal[3 * pixel + size_t(c)] = surface.normal[c];
+  }
+  out.depth[pixel] = (g.position - eye).norm();
+  out.instance[pixel] = frame.instanceIds[hit.instance];
+}
+
+// Runs work(tile) for every tile index on `threads` threads, each taking
+// the next index from a shared counter. Which thread does a tile changes
+// nothing: tiles write only their own pixels.
+template <typename Work>
+void forEachTile(int tileCount, int threads, Work&& work) {
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto run = [&](int thread) {
+    try {
+      for (int tile = next++; tile < tileCount && !failed; tile = next++) work(thread, tile);
+    } catch (...) {
+      if (!failed.exchange(true)) failure = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
+  run(0);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+void checkSize(const RenderList& list, size_t cameraIndex, int width, int height) {
+  if (cameraIndex >= list.cameras.size())
+    throw std::invalid_argument("path tracer: camera " + std::to_string(cameraIndex) + " of " +
+                                std::to_string(list.cameras.size()));
+  if (width < 1 || height < 1) throw std::invalid_argument("path tracer: the image size must be at least 1 x 1");
+}
+
+}  // namespace
+
+void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+                        PathTracedFrame& out) {
+  checkSize(list, cameraIndex, width, height);
+  const auto setupStart = std::chrono::steady_clock::now();
+  PtFrameData frame;
+  prepare(list, frame);
+  const CameraRays camera(list.cameras[cameraIndex], width, height);
+  const Vec3f eye = camera.eye();
+  const size_t pixels = size_t(width) * size_t(height);
+  out.width = width;
+  out.height = height;
+  out.radiance.assign(3 * pixels, 0.0f);
+  out.albedo.assign(3 * pixels, 0.0f);
+  out.normal.assign(3 * pixels, 0.0f);
+  out.depth.assign(pixels, kInf);
+  out.instance.assign(pixels, 0u);
+
+  const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+  const int threads = std::min(settings_.threads, tilesX * tilesY);
+  std::vector<TraceCounters> counters(static_cast<size_t>(threads));
+  const auto traceStart = std::chrono::steady_clock::now();
+  forEachTile(tilesX * tilesY, threads, [&](int thread, int tile) {
+    TraceCounters& count = counters[size_t(thread)];
+    const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+    for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
+      for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
+        const size_t pixel = size_t(y) * size_t(width) + size_t(x);
+        PixelSampler sampler(frameSeed, uint32_t(x), uint32_t(y));
+        double sum[3] = {0, 0, 0};
+        for (int s = 0; s < settings_.samples; ++s) {
+          sampler.startSample(uint32_t(s));
+          const Vec2f jitter = sampler.next2D();
+          const Vec3f L = tracePath(frame, settings_.maxBounces, camera.ray(x + jitter.x(), y + jitter.y()), sampler,
+                                    count);
+          if (!L.allFinite()) {
+            ++count.dropped;
+            continue;
+          }
+          for (int c = 0; c < 3; ++c) sum[c] += L[c];
+        }
+        for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[c] / settings_.samples);
+        traceLabels(frame, camera.ray(x + 0.5, y + 0.5), eye, pixel, out);
+        count.cameraRays += uint64_t(settings_.samples) + 1;
+        ++count.rays;
+      }
+  });
+  const auto traceEnd = std::chrono::steady_clock::now();
+  stats_ = PathTraceStats{};
+  for (const TraceCounters& c : counters) {
+    stats_.rays += c.rays;
+    stats_.cameraRays += c.cameraRays;
+    stats_.droppedSamples += c.dropped;
+  }
+  stats_.samples = uint64_t(pixels) * uint64_t(settings_.samples);
+  stats_.seconds = std::chrono::duration<double>(traceEnd - traceStart).count();
+  stats_.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
+  stats_.threads = threads;
+}
+
+double PathTracer::primaryRayRate(const RenderList& list, size_t cameraIndex, int width, int height, int repeats) {
+  checkSize(list, cameraIndex, width, height);
+  PtFrameData frame;
+  prepare(list, frame);
+  const CameraRays camera(list.cameras[cameraIndex], width, height);
+  const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
+  const int threads = std::min(settings_.threads, tilesX * tilesY);
+  std::vector<uint64_t> hits(static_cast<size_t>(threads), 0);  // keeps the loop from being optimised away
+  const auto start = std::chrono::steady_clock::now();
+  for (int r = 0; r < std::max(repeats, 1); ++r)
+    forEachTile(tilesX * tilesY, threads, [&](int thread, int tile) {
+      const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
+      for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
+        for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
+          SurfaceHit hit;
+          hits[size_t(thread)] += frame.scene->intersect(camera.ray(x + 0.5, y + 0.5), frame.cutOuts(), hit);
+        }
+    });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  uint64_t total = 0;
+  for (uint64_t h : hits) total += h;
+  (void)total;
+  return double(std::max(repeats, 1)) * double(width) * double(height) / seconds;
+}
+
+void toneMap(const PathTracedFrame& frame, float exposureScale, uint8_t* rgba) {
+  const size_t pixels = size_t(frame.width) * size_t(frame.height);
+  for (size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      // The rasterizer's displayColor(): the curve, sRGB, then GL's
+      // rounding to 8 bits.
+      const float mapped = 1.0f - std::exp(-frame.radiance[3 * p + size_t(c)] * exposureScale);
+      const float srgb = mapped <= 0.0031308f ? mapped * 12.92f : 1.055f * std::pow(mapped, 1.0f / 2.4f) - 0.055f;
+      const float clamped = std::isnan(srgb) ? 0.0f : std::clamp(srgb, 0.0f, 1.0f);
+      rgba[4 * p + size_t(c)] = uint8_t(std::lround(clamped * 255.0f));
+    }
+    rgba[4 * p + 3] = 255;
+  }
+}
+
+}  // namespace sdg

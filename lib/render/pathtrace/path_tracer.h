@@ -1,0 +1,101 @@
+#pragma once
+// sdgbehave's CPU path tracer: the render list traced with Intel Embree 3.
+//
+// Light transport: unidirectional path tracing with next-event estimation
+// at every vertex and multiple importance sampling (the power heuristic)
+// between light sampling and BSDF sampling for every light that has an
+// area or a solid angle (pbrt-v4's PathIntegrator, Veach 1997 ch. 9);
+// Russian roulette from the fourth vertex on. Surfaces are PbrBsdf
+// (bsdf.h) with the rasterizer's material inputs (pt_materials.h); lights
+// are pt_lights.h's, with the rasterizer's radiometry.
+//
+// The camera is the rasterizer's (render/camera_math.h): pixel (x, y)
+// covers [x, x + 1) x [y, y + 1) of the image, y down; each sample's
+// primary ray goes through a point drawn uniformly in that square (a box
+// filter), from the near clipping plane to the far one, perspective or
+// orthographic. The labels-like planes (albedo, normal, depth, instance)
+// come from one extra ray through the pixel's centre, the rasterizer's
+// unjittered ray, so they line up with its labels exactly; light shapes do
+// not appear in them.
+//
+// Determinism: a pixel's value depends only on the scene, the settings,
+// frameSeed and the pixel (render/pathtrace/sampler.h's streams, its own
+// sum in a fixed order); tiles are handed to threads from an atomic counter,
+// but no value is ever summed across pixels or threads, so the radiance is
+// byte-identical whatever `threads` is. Embree's BVHs are built on one
+// thread (embree_scene.h).
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "assets/asset_resolver.h"
+#include "render/render_list.h"
+
+namespace sdg {
+
+struct PathTraceSettings {
+  int samples = 64;    // per pixel
+  int maxBounces = 8;  // path length limit (Russian roulette after 3): the scattering events whose light is counted
+  int threads = 0;     // 0: hardware concurrency
+};
+
+struct PathTracedFrame {  // rows top to bottom, like FramePasses
+  int width = 0, height = 0;
+  std::vector<float> radiance;     // linear RGB, 3 per pixel
+  std::vector<float> albedo;       // first-hit base colour (RGB), for the denoiser
+  std::vector<float> normal;       // first-hit shading normal (xyz), facing the camera; 0 for background
+  std::vector<float> depth;        // first-hit distance from the camera's position, scene units; +inf for background
+  std::vector<uint32_t> instance;  // first-hit RenderItem::instanceId; 0 background
+};
+
+// What the last render() did, for benchmarks.
+struct PathTraceStats {
+  uint64_t rays = 0;         // closest-hit and shadow rays traced through Embree
+  uint64_t cameraRays = 0;   // of which primary rays (the samples' and the label rays)
+  uint64_t samples = 0;
+  uint64_t droppedSamples = 0;  // not finite: left out of their pixel's mean
+  double seconds = 0;        // the tracing itself, threads running
+  double setupSeconds = 0;   // meshes, textures, the frame's scene
+  int threads = 0;
+};
+
+struct PtFrameData;  // path_tracer.cpp: what one render() reads while its threads run
+
+class PathTracer {
+ public:
+  PathTracer(const AssetResolver& assets, const PathTraceSettings& settings);
+  ~PathTracer();
+  PathTracer(const PathTracer&) = delete;
+  PathTracer& operator=(const PathTracer&) = delete;
+
+  // Renders camera `cameraIndex` of `list` at width x height. frameSeed keys every pixel's sample stream.
+  // Meshes and textures are loaded once and cached; the Embree scene is rebuilt from the list each call
+  // but each distinct mesh's BLAS is built once and instanced (so a moving object is a new transform, not a rebuild).
+  // Throws RunError for a mesh, texture or dome map that cannot be read, and std::invalid_argument for
+  // a camera index out of range or a size below 1.
+  void render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+              PathTracedFrame& out);
+
+  const PathTraceStats& stats() const { return stats_; }
+
+  // The rate of plain Embree ray casting on the same frame scene: each
+  // pixel's centre ray, closest hit only, no shading (rays per second over
+  // all threads). For comparison with stats(); renders nothing.
+  double primaryRayRate(const RenderList& list, size_t cameraIndex, int width, int height, int repeats = 4);
+
+ private:
+  struct Caches;
+  void prepare(const RenderList& list, PtFrameData& frame);
+
+  const AssetResolver& assets_;
+  PathTraceSettings settings_;
+  std::unique_ptr<Caches> caches_;
+  PathTraceStats stats_;
+};
+
+// The rasterizer's tone curve (display = 1 - exp(-radiance * exposureScale), then sRGB, rounded) into RGBA8, alpha 255.
+void toneMap(const PathTracedFrame& frame, float exposureScale, uint8_t* rgba);
+
+}  // namespace sdg

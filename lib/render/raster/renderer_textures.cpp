@@ -1,0 +1,99 @@
+// The rasterizer's textures: material maps (files and images embedded in
+// mesh files) and the pre-filtered textures of dome maps.
+#include "render/raster/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "core/diagnostics.h"
+#include "render/camera_math.h"
+#include "render/raster/renderer_internal.h"
+#include "render/raster/shaders.h"
+#include "render/raster/environment_map.h"
+#include "render/raster/gl_textures.h"
+
+namespace sdg {
+
+using namespace raster_detail;
+
+ImageRgba8 Renderer::decodeTexture(const std::string& key, const std::string& primPath, TextureData data) const {
+  try {
+    auto embedded = embeddedImages_.find(key);
+    if (embedded != embeddedImages_.end()) {
+      const EmbeddedImage& e = embedded->second;
+      const std::vector<uint8_t>& bytes = *e.bytes;
+      if (e.rawWidth == 0) return decodeImageRgba8(bytes.data(), bytes.size(), e.name, data);
+      // assimp's raw texels are b, g, r, a.
+      ImageRgba8 image{e.rawWidth, e.rawHeight, std::vector<uint8_t>(bytes.size())};
+      for (size_t i = 0; i + 3 < bytes.size(); i += 4) {
+        image.pixels[i] = bytes[i + 2];
+        image.pixels[i + 1] = bytes[i + 1];
+        image.pixels[i + 2] = bytes[i];
+        image.pixels[i + 3] = bytes[i + 3];
+      }
+      return image;
+    }
+    std::optional<std::string> resolved = assets_.resolve(key);
+    if (!resolved) throw RunError("texture '" + key + "' not found; " + assets_.describeSearch(key));
+    return loadImageRgba8(*resolved, data);
+  } catch (const RunError& e) {
+    throw RunError(primPath + ": " + e.what());
+  }
+}
+
+const Renderer::GpuTexture& Renderer::texture(const std::string& key, const std::string& primPath, TextureData data) {
+  auto& cache = data == TextureData::Color ? colorTextures_ : dataTextures_;
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  const ImageRgba8 image = decodeTexture(key, primPath, data);
+  const unsigned t = data == TextureData::Color ? makeSrgbTexture(gl_, image) : makeDataTexture(gl_, image);
+  const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
+  return cache.emplace(key, GpuTexture{t, levels}).first->second;
+}
+
+void Renderer::bindMaps(const MaterialMaps& maps, const std::string& primPath) {
+  auto bind = [&](int unit, const std::string& key, TextureData data) {
+    gl_.glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    gl_.glBindTexture(GL_TEXTURE_2D, key.empty() ? whiteTexture_ : texture(key, primPath, data).id);
+  };
+  bind(kBaseUnit, maps.baseColor, TextureData::Color);
+  if (!maps.roughness.empty()) bind(kRoughnessUnit, maps.roughness, TextureData::Linear);
+  if (!maps.metallic.empty()) bind(kMetallicUnit, maps.metallic, TextureData::Linear);
+  if (!maps.orm.empty()) bind(kOrmUnit, maps.orm, TextureData::Linear);
+  if (!maps.normal.empty()) bind(kNormalUnit, maps.normal, TextureData::Linear);
+  if (!maps.opacity.empty()) bind(kOpacityUnit, maps.opacity, TextureData::Linear);
+  gl_.glActiveTexture(GL_TEXTURE0);
+}
+
+const Renderer::DomeTextures& Renderer::dome(const RenderLight& light) {
+  auto it = domes_.find(light.texture);
+  if (it != domes_.end()) return it->second;
+  ImageRgbaF map;
+  try {
+    std::optional<std::string> resolved = assets_.resolve(light.texture);
+    if (!resolved)
+      throw RunError("texture '" + light.texture + "' not found; " + assets_.describeSearch(light.texture));
+    map = loadImageLinear(*resolved);
+  } catch (const RunError& e) {
+    throw RunError(light.path + ": " + e.what());
+  }
+  if (domes_.size() >= kMaxCachedDomes) {
+    auto oldest = domes_.begin();  // any: which one goes is not visible in the output
+    unsigned ids[] = {oldest->second.background, oldest->second.specular, oldest->second.irradiance};
+    gl_.glDeleteTextures(3, ids);
+    domes_.erase(oldest);
+  }
+  const PrefilteredEnvironment prefiltered = prefilterEnvironment(map);
+  DomeTextures d;
+  d.background = makeLatLongTexture(gl_, map);
+  std::vector<const LatLong*> levels;
+  for (const LatLong& level : prefiltered.specular) levels.push_back(&level);
+  d.specular = makeLatLongTexture(gl_, levels);
+  d.specularLevels = int(levels.size());
+  d.irradiance = makeLatLongTexture(gl_, std::vector<const LatLong*>{&prefiltered.irradiance});
+  return domes_.emplace(light.texture, d).first->second;
+}
+
+}  // namespace sdg

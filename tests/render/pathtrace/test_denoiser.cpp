@@ -1,0 +1,215 @@
+// The path tracer's edge-avoiding à-trous denoiser (Dammertz et al. 2010):
+// noise falls and the mean stays, edges between instances, normals and
+// depths stay sharp, albedo texture survives, and the output does not
+// depend on the thread count.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "behavior/rng.h"
+#include "render/pathtrace/denoiser.h"
+
+using namespace sdg;
+
+namespace {
+
+// A frame's planes, filled per pixel by the tests.
+struct Frame {
+  int width, height;
+  std::vector<float> radiance, albedo, normal, depth;
+  std::vector<uint32_t> instance;
+
+  Frame(int w, int h)
+      : width(w), height(h), radiance(size_t(w * h * 3), 0.0f), albedo(size_t(w * h * 3), 1.0f),
+        normal(size_t(w * h * 3), 0.0f), depth(size_t(w * h), 2.0f), instance(size_t(w * h), 1) {
+    for (size_t p = 0; p < size_t(w * h); ++p) normal[3 * p + 2] = 1.0f;
+  }
+  size_t at(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+  void setRgb(std::vector<float>& plane, int x, int y, float r, float g, float b) {
+    float* v = plane.data() + 3 * at(x, y);
+    v[0] = r, v[1] = g, v[2] = b;
+  }
+  DenoiseInputs inputs(bool withInstances = true) const {
+    return {width, height, radiance.data(), albedo.data(), normal.data(), depth.data(),
+            withInstances ? instance.data() : nullptr};
+  }
+};
+
+std::vector<float> denoise(const Frame& frame, bool withInstances = true, unsigned threads = 1) {
+  std::vector<float> out(frame.radiance.size());
+  Denoiser({.threads = threads}).run(frame.inputs(withInstances), out.data());
+  return out;
+}
+
+// Roughly Gaussian noise of unit variance: the sum of four uniforms.
+float gaussianish(Rng& rng) {
+  double sum = 0;
+  for (int i = 0; i < 4; ++i) sum += rng.uniform01();
+  return float((sum - 2.0) * std::sqrt(3.0));
+}
+
+double rmsError(const std::vector<float>& image, float truth) {
+  double sum = 0;
+  for (float v : image) sum += double(v - truth) * double(v - truth);
+  return std::sqrt(sum / double(image.size()));
+}
+
+double mean(const std::vector<float>& image) {
+  double sum = 0;
+  for (float v : image) sum += v;
+  return sum / double(image.size());
+}
+
+}  // namespace
+
+TEST_CASE("denoiser: a noisy flat wall converges toward its mean, which stays", "[pathtrace][denoiser]") {
+  constexpr float kTruth = 0.4f;
+  Frame wall(64, 64);
+  Rng rng(1, 1);
+  for (size_t i = 0; i < wall.radiance.size(); ++i) {
+    wall.albedo[i] = 0.5f;
+    wall.radiance[i] = kTruth * (1.0f + 0.3f * gaussianish(rng));
+  }
+  const std::vector<float> out = denoise(wall);
+  const double before = rmsError(wall.radiance, kTruth), after = rmsError(out, kTruth);
+  INFO("RMS error " << before << " -> " << after);
+  CHECK(after * 4.0 < before);
+  CHECK(mean(out) == Approx(mean(wall.radiance)).epsilon(0.005));
+}
+
+TEST_CASE("denoiser: an edge between instances stays sharp", "[pathtrace][denoiser]") {
+  // Left: instance 1 at 0.2; right: instance 2 at 1.0; the same wall
+  // otherwise, with 10 % noise.
+  Frame frame(64, 32);
+  Rng rng(2, 2);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const bool right = x >= 32;
+      frame.instance[frame.at(x, y)] = right ? 2 : 1;
+      for (int c = 0; c < 3; ++c)
+        frame.radiance[3 * frame.at(x, y) + size_t(c)] = (right ? 1.0f : 0.2f) * (1.0f + 0.1f * gaussianish(rng));
+    }
+  const std::vector<float> out = denoise(frame);
+  double leftColumn = 0, rightColumn = 0;
+  for (int y = 0; y < frame.height; ++y) {
+    const float left = out[3 * frame.at(31, y)], right = out[3 * frame.at(32, y)];
+    CHECK(left == Approx(0.2f).epsilon(0.05));
+    CHECK(right == Approx(1.0f).epsilon(0.05));
+    leftColumn += left / frame.height, rightColumn += right / frame.height;
+  }
+  CHECK(leftColumn == Approx(0.2).epsilon(0.02));
+  CHECK(rightColumn == Approx(1.0).epsilon(0.02));
+  // The ids are what holds it: without them the colour weight alone lets
+  // the bright side bleed into the dark one.
+  const std::vector<float> blended = denoise(frame, false);
+  double bledColumn = 0;
+  for (int y = 0; y < frame.height; ++y) bledColumn += blended[3 * frame.at(31, y)] / frame.height;
+  CHECK(bledColumn > 0.2 * 1.05);
+}
+
+TEST_CASE("denoiser: normal and depth edges stay sharp within one instance", "[pathtrace][denoiser]") {
+  // Radiance 0.5 and 0.7 on either side: close enough that the colour
+  // weight alone would blend them.
+  Frame frame(64, 64);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const bool otherWall = x >= 32;       // a wall at a right angle
+      const bool inFront = y >= 32 && !otherWall;  // a box one unit closer
+      const float value = (otherWall || inFront) ? 0.7f : 0.5f;
+      frame.setRgb(frame.radiance, x, y, value, value, value);
+      if (otherWall) frame.setRgb(frame.normal, x, y, 1.0f, 0.0f, 0.0f);
+      if (inFront) frame.depth[frame.at(x, y)] = 1.0f;
+    }
+  const std::vector<float> out = denoise(frame);
+  for (int y = 0; y < frame.height; ++y) {
+    CHECK(out[3 * frame.at(31, y)] == Approx(y >= 32 ? 0.7f : 0.5f).epsilon(0.01));
+    CHECK(out[3 * frame.at(32, y)] == Approx(0.7f).epsilon(0.01));
+  }
+  for (int x = 0; x < 32; ++x) {
+    CHECK(out[3 * frame.at(x, 31)] == Approx(0.5f).epsilon(0.01));
+    CHECK(out[3 * frame.at(x, 32)] == Approx(0.7f).epsilon(0.01));
+  }
+}
+
+TEST_CASE("denoiser: a checkerboard albedo under uniform light survives (demodulation)", "[pathtrace][denoiser]") {
+  // 2 x 2-pixel checks of albedo 0.1 and 0.9, lit by irradiance 0.8, with
+  // 20 % noise: the filter smooths the light, the albedo puts the texture back.
+  constexpr float kLight = 0.8f;
+  Frame frame(64, 64);
+  Rng rng(4, 4);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const float a = ((x / 2 + y / 2) % 2 == 0) ? 0.1f : 0.9f;
+      frame.setRgb(frame.albedo, x, y, a, a, a);
+      for (int c = 0; c < 3; ++c)
+        frame.radiance[3 * frame.at(x, y) + size_t(c)] = a * kLight * (1.0f + 0.2f * gaussianish(rng));
+    }
+  const std::vector<float> out = denoise(frame);
+  double noisyError = 0, denoisedError = 0;
+  for (size_t i = 0; i < out.size(); ++i) {
+    const float truth = frame.albedo[i] * kLight;
+    CHECK(out[i] == Approx(truth).epsilon(0.1));
+    noisyError += std::abs(frame.radiance[i] - truth) / truth;
+    denoisedError += std::abs(out[i] - truth) / truth;
+  }
+  CHECK(denoisedError * 4.0 < noisyError);
+}
+
+TEST_CASE("denoiser: pixels without a surface keep their radiance", "[pathtrace][denoiser]") {
+  Frame frame(16, 16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const bool sky = y < 8;
+      const float v = sky ? 2.0f + 0.1f * float(x) : 0.3f;
+      frame.setRgb(frame.radiance, x, y, v, v, v);
+      if (sky) {
+        frame.setRgb(frame.normal, x, y, 0.0f, 0.0f, 0.0f);
+        frame.setRgb(frame.albedo, x, y, 0.0f, 0.0f, 0.0f);
+        frame.depth[frame.at(x, y)] = std::numeric_limits<float>::infinity();
+      }
+    }
+  const std::vector<float> out = denoise(frame);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const float value = out[3 * frame.at(x, y)];
+      if (y < 8)
+        CHECK(value == frame.radiance[3 * frame.at(x, y)]);
+      else
+        CHECK(value == Approx(0.3f).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("denoiser: the output is the same whatever the thread count", "[pathtrace][denoiser]") {
+  // An irregular frame: noise, several instances, slanted depth, a few
+  // pixels of background, a size no thread count divides evenly.
+  Frame frame(97, 61);
+  Rng rng(6, 6);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const size_t p = frame.at(x, y);
+      frame.instance[p] = uint32_t((x / 20) + 3 * (y / 25));
+      frame.depth[p] = 1.0f + 0.01f * float(x) + 0.003f * float(y);
+      frame.setRgb(frame.albedo, x, y, float(rng.uniform01()), 0.5f, 0.25f);
+      frame.setRgb(frame.radiance, x, y, float(rng.uniform01()), float(rng.uniform01()), 2.0f * float(rng.uniform01()));
+      if (rng.uniform01() < 0.02) frame.depth[p] = std::numeric_limits<float>::infinity();
+    }
+  const std::vector<float> single = denoise(frame, true, 1);
+  for (unsigned threads : {2u, 3u, 8u, 61u, 200u}) {
+    INFO(threads << " threads");
+    const std::vector<float> multi = denoise(frame, true, threads);
+    CHECK(std::memcmp(single.data(), multi.data(), single.size() * sizeof(float)) == 0);
+  }
+  // One denoiser, reused at another size and back: its scratch buffers
+  // carry nothing over.
+  Denoiser reused({.threads = 4});
+  std::vector<float> out(single.size());
+  Frame small(5, 3);
+  std::vector<float> smallOut(small.radiance.size());
+  reused.run(small.inputs(), smallOut.data());
+  reused.run(frame.inputs(), out.data());
+  CHECK(std::memcmp(single.data(), out.data(), single.size() * sizeof(float)) == 0);
+  for (float v : out) CHECK(std::isfinite(v));
+}
