@@ -65,6 +65,15 @@ void addImageArgs(CLI::App& cmd, ImageArgs& args) {
   cmd.add_option("--gpu", args.gpu, "EGL GPU device index (0-based); one process per GPU, with --shard")
       ->check(CLI::Range(0, 1023))
       ->type_name("N");
+  cmd.add_option("--render-mode", args.renderMode,
+                 "Colour from the rasterizer (raster: fast) or the CPU path tracer (pathtraced: physically based, "
+                 "soft shadows, bounced light); labels always come from the rasterizer; overrides render.mode")
+      ->check(CLI::IsMember({"raster", "pathtraced"}))
+      ->type_name("MODE");
+  cmd.add_option("--samples", args.samples, "Path-traced samples per pixel (overrides render.samples)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->type_name("N");
+  cmd.add_flag("--denoise", args.denoise, "Denoise path-traced colour (sets render.denoise)");
 }
 
 std::pair<int, int> parseResolution(const std::string& text) {
@@ -87,6 +96,9 @@ RenderOverrides renderOverrides(const ImageArgs& args) {
   o.subframes = args.subframes;
   if (!args.backend.empty()) o.backend = args.backend;
   o.gpu = args.gpu;
+  if (!args.renderMode.empty()) o.mode = args.renderMode;
+  o.samples = args.samples;
+  if (args.denoise) o.denoise = true;
   return o;
 }
 

@@ -43,6 +43,9 @@ struct ImageArgs {
   std::optional<int> subframes;
   std::string backend;     // "" = render.backend
   int gpu = -1;
+  std::string renderMode;  // "" = render.mode
+  std::optional<int> samples;
+  bool denoise = false;    // --denoise: on whatever render.denoise says
 };
 void addImageArgs(CLI::App& cmd, ImageArgs& args);
 // The overrides they give (a bad --resolution is a usage error, exit 2).

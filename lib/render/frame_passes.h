@@ -27,6 +27,7 @@ struct FramePasses {
   std::vector<float> distanceToCamera;        // metres; +inf where nothing was hit
   std::vector<float> distanceToImagePlane;    // metres along the optical axis; +inf where nothing was hit
   std::vector<uint32_t> instanceIds;          // RenderItem::instanceId; 0 = background
+  std::vector<float> hdrColor;                // 3 per pixel: linear radiance, path-traced frames when asked
 
   // Sizes colour and the buffers `passes` fills for w x h; the others keep
   // what they hold (nothing, in a fresh frame), so a run that reads back

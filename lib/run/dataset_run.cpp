@@ -14,6 +14,7 @@
 #include "core/log.h"
 #include "core/recycler.h"
 #include "render/raster/renderer.h"
+#include "run/pathtraced_color.h"
 #include "run/dataset_finalize.h"
 #include "run/preroll.h"
 #include "run/progress.h"
@@ -156,12 +157,24 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     finished = finishedFrames(options.outDir, productNames.size());
   }
   BasicWriter writer(writerConfig->options, productNames, options.seed);
+  const bool keepRadiance = writerConfig->options.getBool("hdr_color");
+  if (keepRadiance && settings.mode != RenderMode::PathTraced) {
+    const SourceLoc* at = writerConfig->options.locOf("hdr_color");
+    throw SceneError(at ? *at : sceneLoc,
+                     "writer.hdr_color: linear radiance comes from the path tracer; set render.mode: pathtraced "
+                     "(or --render-mode pathtraced)");
+  }
   writeFiles(options.outDir, writer.metadataFiles());
   ManifestWriter manifest(
       (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
           .string());
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  // render.mode pathtraced: the colour of every product, traced on `threads`
+  // cores while the pool encodes the frames before it.
+  std::unique_ptr<PathTracedColor> pathTraced;
+  if (settings.mode == RenderMode::PathTraced)
+    pathTraced = std::make_unique<PathTracedColor>(loaded.assets, settings, int(threads));
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
                                   ->options.get("semantic_types")
                                   .get<std::vector<std::string>>();
@@ -265,6 +278,13 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     Renderer& renderer = bringUp.renderer();
     renderer.collect(pending->slot, pending->job->passes);
     if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
+    if (pathTraced) {
+      auto traceStart = Clock::now();
+      const ProductFrame& job = *pending->job;
+      pathTraced->render(pending->shared->list, pending->cameraIndex, pathTraceSeed(options.seed, job.frame, job.product),
+                         pending->job->passes, keepRadiance);
+      result.stages.render += since(traceStart);
+    }
     submit(*pending);
     pending.reset();
   };

@@ -4,6 +4,7 @@
 #include "core/file_io.h"
 #include "core/text.h"
 #include "render/raster/renderer.h"
+#include "run/pathtraced_color.h"
 #include "writers/png_encoder.h"
 
 namespace sdg {
@@ -33,12 +34,19 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
   std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
   Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;
-  renderer.render(list, index, frame, PassSelection::colourOnly());
+  std::string device = context->rendererName() + " via " + context->backend();
+  if (settings.mode == RenderMode::PathTraced) {
+    // The picture is the path tracer's; the rasterizer is not needed.
+    frame.resize(settings.width, settings.height, PassSelection::colourOnly());
+    PathTracedColor(loaded.assets, settings, 0).render(list, index, pathTraceSeed(0, 0, index), frame, false);
+    device = "path tracer (CPU, Embree)";
+  } else {
+    renderer.render(list, index, frame, PassSelection::colourOnly());
+  }
   std::vector<uint8_t> png = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8,
                                         PngOptions::renderedImage());
   writeFileAtomic(options.outputPath, png);
-  return QuickRenderResult{list.cameras[index].path, context->rendererName() + " via " + context->backend(), frame.width,
-                           frame.height};
+  return QuickRenderResult{list.cameras[index].path, device, frame.width, frame.height};
 }
 
 }  // namespace sdg

@@ -30,6 +30,11 @@ RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& over
   settings.width = overrides.width.value_or(resolution.x());
   settings.height = overrides.height.value_or(resolution.y());
   settings.subframes = overrides.subframes.value_or(int(scene.render.getUInt("subframes")));
+  const std::string mode = overrides.mode.value_or(scene.render.getString("mode"));
+  settings.mode = mode == "pathtraced" ? RenderMode::PathTraced : RenderMode::Raster;
+  settings.samples = overrides.samples.value_or(int(scene.render.getUInt("samples")));
+  settings.maxBounces = int(scene.render.getUInt("max_bounces"));
+  settings.denoise = overrides.denoise.value_or(scene.render.getBool("denoise"));
   return settings;
 }
 

@@ -44,6 +44,9 @@ struct LoadedScene {
 // --subframes, --backend, --gpu), shared by `run` and `render`.
 struct RenderOverrides {
   std::optional<int> width, height, subframes;
+  std::optional<std::string> mode;  // raster | pathtraced
+  std::optional<int> samples;
+  std::optional<bool> denoise;
   std::optional<std::string> backend;  // auto | osmesa | egl
   int gpu = -1;                        // EGL GPU index; -1: the first
 };

@@ -37,6 +37,14 @@ const std::vector<AttributeSpec>& renderSpecs() {
       atLeast(1, option("resolution", Value::makeInt2(512, 512), "Image size in pixels (width, height).")),
       atLeast(1, option("subframes", Value::makeUInt(1),
                         "Jittered sub-samples accumulated per frame for anti-aliased colour (labels stay exact).")),
+      tokens(option("mode", Value::makeToken("raster"),
+                    "Colour from the rasterizer (raster: fast, shadow maps, no bounced light) or the CPU path tracer "
+                    "(pathtraced: physically based; labels still come from the rasterizer)."),
+             {"raster", "pathtraced"}),
+      atLeast(1, option("samples", Value::makeUInt(64), "Path-traced samples per pixel.")),
+      atLeast(1, option("max_bounces", Value::makeUInt(8), "Path-traced scattering events whose light is counted.")),
+      option("denoise", Value::makeBool(false),
+             "Filter path-traced colour with the edge-aware denoiser (guided by albedo, normals, depth, instances)."),
       tokens(option("backend", Value::makeToken("auto"),
                     "GL back end: osmesa (CPU), egl (GPU, headless) or auto (EGL GPU when present, else OSMesa)."),
              {"auto", "osmesa", "egl"}),
@@ -84,6 +92,8 @@ const std::vector<AttributeSpec>& basicWriterSpecs() {
   };
   static const std::vector<AttributeSpec> specs = {
       flag("rgb", false, "rgb_X.png: the colour image (8-bit RGBA)."),
+      flag("hdr_color", false,
+           "hdr_color_X.npy: linear radiance before tone mapping (float32, height x width x 3); render.mode pathtraced only."),
       flag("bounding_box_2d_tight", false, "Boxes around the visible pixels of each labelled entity."),
       flag("bounding_box_2d_loose", false, "Boxes around the full projected extent, ignoring occluders."),
       flag("semantic_segmentation", false, "Per-pixel semantic ids and their labels."),

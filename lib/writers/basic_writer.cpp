@@ -191,6 +191,8 @@ std::vector<OutputFile> BasicWriter::encode(const ProductFrame& in) const {
           {name(kind, kind, "png"), encodePng(colorizeDistance(d), w, h, PngPixels::Gray8, PngOptions::renderedImage())});
   };
   if (options_.getBool("distance_to_camera")) distance("distance_to_camera", f.distanceToCamera);
+  if (options_.getBool("hdr_color"))
+    files.push_back({name("hdr_color", "hdr_color", "npy"), encodeNpy("'<f4'", npyShape({h, w, 3}), bytesOf(f.hdrColor))});
   if (options_.getBool("distance_to_image_plane")) distance("distance_to_image_plane", f.distanceToImagePlane);
 
   auto boxes2d = [&](const char* kind, const std::vector<Box2D>& boxes) {

@@ -31,6 +31,8 @@ float gentlerDifference(float backward, float forward) {
   return std::isfinite(chosen) ? chosen : 0.0f;
 }
 
+float luminance(const float* c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+
 bool hasSurface(const DenoiseInputs& in, size_t p) {
   const float* n = in.normal + 3 * p;
   return std::isfinite(in.depth[p]) && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f);
@@ -52,6 +54,7 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
   illuminationA_.resize(3 * pixels);
   illuminationB_.resize(3 * pixels);
   depthGradient_.resize(2 * pixels);
+  noise_.resize(pixels);
 
   const unsigned wanted =
       settings_.threads != 0 ? settings_.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -62,6 +65,8 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
     const int rowBegin = int(int64_t(in.height) * thread / threads);
     const int rowEnd = int(int64_t(in.height) * (thread + 1) / threads);
     prepareRows(in, rowBegin, rowEnd);
+    sync();
+    estimateNoiseRows(in, rowBegin, rowEnd);
     sync();
     float* source = illuminationA_.data();
     float* target = illuminationB_.data();
@@ -99,12 +104,35 @@ void Denoiser::prepareRows(const DenoiseInputs& in, int rowBegin, int rowEnd) {
     }
 }
 
+// The standard deviation of the demodulated luminance over each pixel's
+// 5 x 5 neighbourhood on the same instance: SVGF's spatial variance
+// estimate, which a single frame without per-pixel sample variance has.
+void Denoiser::estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowEnd) {
+  const int w = in.width, h = in.height;
+  for (int y = rowBegin; y < rowEnd; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = size_t(y) * size_t(w) + size_t(x);
+      double sum = 0, sum2 = 0;
+      int n = 0;
+      for (int qy = std::max(0, y - 2); qy <= std::min(h - 1, y + 2); ++qy)
+        for (int qx = std::max(0, x - 2); qx <= std::min(w - 1, x + 2); ++qx) {
+          const size_t q = size_t(qy) * size_t(w) + size_t(qx);
+          if (!hasSurface(in, q) || (in.instance && in.instance[q] != in.instance[p])) continue;
+          const double l = luminance(illuminationA_.data() + 3 * q);
+          sum += l;
+          sum2 += l * l;
+          ++n;
+        }
+      noise_[p] = n > 1 ? float(std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)))) : 0.0f;
+    }
+}
+
 void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* source, float* target, int rowBegin,
                           int rowEnd) const {
   const int w = in.width, h = in.height;
   const int step = 1 << iteration;
-  const float sigmaColor = settings_.sigmaColor * std::ldexp(1.0f, -iteration);
-  const float inverseSigmaColor2 = 1.0f / (sigmaColor * sigmaColor);
+  // Each pass leaves less noise: the scale shrinks with it.
+  const float sigmaColor = settings_.sigmaColor * std::pow(0.5f, 0.5f * float(iteration));
   for (int y = rowBegin; y < rowEnd; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
@@ -116,7 +144,10 @@ void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* s
       const float* np = in.normal + 3 * p;
       const float zp = in.depth[p];
       const float gx = depthGradient_[2 * p], gy = depthGradient_[2 * p + 1];
-      const float magnitudeP = std::abs(cp[0]) + std::abs(cp[1]) + std::abs(cp[2]);
+      const float luminanceP = luminance(cp);
+      // A floor of 1 % of the pixel's own level, so noise-free regions
+      // still stop at real edges instead of dividing by zero.
+      const float colorScale = sigmaColor * noise_[p] + 0.01f * std::abs(luminanceP) + 1e-6f;
       float sum[3] = {0.0f, 0.0f, 0.0f};
       float weightSum = 0.0f;
       for (int ky = -2; ky <= 2; ++ky) {
@@ -136,12 +167,10 @@ void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* s
             if (!(cosine > 0.0f) || !std::isfinite(dz)) continue;
             const float expectedDz = std::abs(gx * float(qx - x) + gy * float(qy - y));
             const float depthScale = settings_.sigmaDepth * expectedDz + kRelativeDepthTolerance * std::abs(zp);
-            const float colorDistance = std::abs(cq[0] - cp[0]) + std::abs(cq[1] - cp[1]) + std::abs(cq[2] - cp[2]);
-            const float meanMagnitude = 0.5f * (magnitudeP + std::abs(cq[0]) + std::abs(cq[1]) + std::abs(cq[2]));
-            const float relativeColor = meanMagnitude > 0.0f ? colorDistance / meanMagnitude : 0.0f;
+            const float colorDistance = std::abs(luminance(cq) - luminanceP);
             weight *= std::pow(cosine, settings_.sigmaNormal) *
                       std::exp(-dz / std::max(depthScale, std::numeric_limits<float>::min())) *
-                      std::exp(-relativeColor * relativeColor * inverseSigmaColor2);
+                      std::exp(-colorDistance / colorScale);
           }
           for (int c = 0; c < 3; ++c) sum[c] += weight * cq[c];
           weightSum += weight;

@@ -46,7 +46,11 @@ struct DenoiseInputs {
 
 struct DenoiseSettings {
   int iterations = 5;  // 0 to 16
-  float sigmaColor = 1.0f;
+  // Colour edges stop the filter where two pixels' illumination differs by
+  // more than sigmaColor times the pixel's noise (the standard deviation of
+  // its 5 x 5 neighbourhood, as SVGF's spatial estimate): noise is smoothed,
+  // real differences (shadow edges) are kept.
+  float sigmaColor = 4.0f;
   float sigmaNormal = 128.0f;
   float sigmaDepth = 1.0f;
   // Threads filtering rows; 0: the hardware's count.
@@ -65,6 +69,7 @@ class Denoiser {
 
  private:
   void prepareRows(const DenoiseInputs& in, int rowBegin, int rowEnd);
+  void estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowEnd);
   void filterRows(const DenoiseInputs& in, int iteration, const float* source, float* target, int rowBegin,
                   int rowEnd) const;
   void remodulateRows(const DenoiseInputs& in, const float* source, float* out, int rowBegin, int rowEnd) const;
@@ -72,6 +77,7 @@ class Denoiser {
   DenoiseSettings settings_;
   std::vector<float> illuminationA_, illuminationB_;  // RGB, ping-pong between iterations
   std::vector<float> depthGradient_;                  // d depth / dx, d depth / dy
+  std::vector<float> noise_;                          // the input's local standard deviation of luminance
 };
 
 }  // namespace sdg

@@ -124,6 +124,7 @@ RTCScene buildTriangleBvh(RTCDevice device, const MeshData& data, bool filter, v
   rtcSetGeometryUserData(geometry, user);
   rtcCommitGeometry(geometry);
   RTCScene scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
   rtcAttachGeometryByID(scene, geometry, 0);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(scene);
@@ -168,6 +169,7 @@ void EmbreeScene::buildFilteredBvh(Mesh& mesh) {
 void EmbreeScene::setInstances(const std::vector<SceneInstance>& instances) {
   if (impl_->top) rtcReleaseScene(impl_->top);
   impl_->top = rtcNewScene(impl_->device);
+  rtcSetSceneFlags(impl_->top, RTC_SCENE_FLAG_ROBUST);
   instances_.assign(instances.size(), Instance{});
   bounds_.setEmpty();
   for (size_t i = 0; i < instances.size(); ++i) {

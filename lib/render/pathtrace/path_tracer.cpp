@@ -191,14 +191,16 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     if (onSurface) toLights.tMax = hit.t;
     LightHit lightHit;
     if (lights.intersect(toLights, lightHit)) {
-      const float weight =
-          depth == 0 ? 1.0f
-                     : powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint, previousNormal, ray.direction));
+      const float weight = depth == 0 ? 1.0f
+                                      : powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint,
+                                                                           previousNormal, ray.direction));
       radiance += beta.cwiseProduct(lightHit.radiance) * weight;
       break;
     }
     if (!onSurface) {
-      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, depth == 0 ? 0.0f : bsdfPdf));
+      // Camera rays (depth 0) see the sky unweighted.
+      const float pdf = depth == 0 ? 0.0f : bsdfPdf;
+      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, pdf));
       break;
     }
     if (depth == maxBounces) break;

@@ -74,7 +74,8 @@ class PathTracer {
   // Meshes and textures are loaded once and cached; the Embree scene is rebuilt from the list each call
   // but each distinct mesh's BLAS is built once and instanced (so a moving object is a new transform, not a rebuild).
   // Throws RunError for a mesh, texture or dome map that cannot be read, and std::invalid_argument for
-  // a camera index out of range or a size below 1.
+  // a camera index out of range or a size below 1. One render at a time per PathTracer (it owns the caches).
+  // A RenderItem's doubleSided is not read: every face is seen from both sides, as in the rasterizer.
   void render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
               PathTracedFrame& out);
 

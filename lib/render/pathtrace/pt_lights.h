@@ -21,9 +21,13 @@
 //   which gives E at normal incidence; sampled uniformly over the cone.
 // - DomeLight: the first dome with a texture shows its lat-long map
 //   (render/latlong.h, in the frame RenderLight::worldRotation) times its
-//   radiance, the others add their uniform radiance, as the rasterizer
-//   combines them. Sampled by the map (EnvironmentSampler) mixed, by power,
-//   with a cosine lobe around the shading normal for the uniform part.
+//   radiance; the others add their uniform radiance (the rasterizer lets a
+//   textured dome replace them instead). Sampled by the map
+//   (EnvironmentSampler, whose texels the radiance is read from) mixed, by
+//   power, with a cosine lobe around the shading normal for the uniform part.
+//
+// Sizes are the lights' own attributes, positions and frames their world
+// transforms without scale, as in the rasterizer.
 //
 // Every ray sees the lights, camera rays included: a light shape shows its
 // radiance, a distant light with an angle its disk (the sun in the sky),

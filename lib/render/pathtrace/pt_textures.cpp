@@ -27,7 +27,8 @@ uint32_t wrap(int64_t i, uint32_t size) {
 
 }  // namespace
 
-PtTexture::PtTexture(ImageRgba8 image, TextureData data) : image_(std::move(image)), srgb_(data == TextureData::Color) {}
+PtTexture::PtTexture(ImageRgba8 image, TextureData data)
+    : image_(std::move(image)), srgb_(data == TextureData::Color) {}
 
 Eigen::Vector4f PtTexture::texel(uint32_t x, uint32_t y) const {
   const uint8_t* p = &image_.pixels[(size_t(y) * image_.width + x) * 4];

@@ -1,0 +1,33 @@
+#pragma once
+// How frames are drawn, for both modes: the rasterizer (render/raster/) and
+// the path tracer (render/pathtrace/).
+namespace sdg {
+
+enum class RenderMode { Raster, PathTraced };
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int subframes = 1;  // jittered colour samples averaged per frame
+  // Tone mapping: display = 1 - exp(-radiance * exposureScale), then sRGB.
+  // With 0.002 a white Lambert surface lit head-on by a distant light of
+  // intensity 4000 maps to about 0.92 (sRGB 246); lamps of 20,000-120,000
+  // at a few metres give moderate to bright pools of light.
+  float exposureScale = 0.002f;
+  // Texels along each side of a light's map (all share one atlas drawn in
+  // one pass); 0 picks the output's larger side, which with maps fitted to
+  // what the camera sees resolves about one texel per pixel.
+  int shadowMapSize = 0;
+  // Lights with shadow maps: every distant light and sphere light, up to this
+  // many, in stage order; others light without shadows.
+  int maxShadowedLights = 4;
+
+  // Colour from the rasterizer or the path tracer (labels always come from
+  // the rasterizer's exact passes); the path tracer's inputs.
+  RenderMode mode = RenderMode::Raster;
+  int samples = 64;     // per pixel
+  int maxBounces = 8;   // scattering events whose light is counted
+  bool denoise = false; // the edge-aware filter (render/pathtrace/denoiser.h)
+};
+
+}  // namespace sdg
