@@ -15,6 +15,17 @@ for threads in 1 2; do
   LP_NUM_THREADS=$threads "$build/tools/sdg_bench_render" "$stage/demo_stage.yaml" >> "$lines"
   LP_NUM_THREADS=$threads "$build/tools/sdg_bench_render" >> "$lines"
 done
+# The path tracer on the demo's stage at 512 x 512 (all cores), and on the
+# Cornell box at 256 x 256 at the sample counts of the Cycles comparison
+# (docs/rendering.md): time per frame, rays per second per core next to
+# plain Embree ray casting of the same scene.
+cores=$(nproc)
+for spp in 16 64; do
+  "$build/tools/sdg_bench_pathtrace" "$stage/demo_stage.yaml" 512 512 $spp "$cores" denoise >> "$lines"
+done
+for spp in 16 64 256; do
+  "$build/tools/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 $spp "$cores" denoise >> "$lines"
+done
 rm -rf "$stage"
 # Steady state of the demo scene as a dataset run: 600 frames at 512 x 512,
 # 5 runs per writer configuration. Steady state is the frames over the time

@@ -278,12 +278,11 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     Renderer& renderer = bringUp.renderer();
     renderer.collect(pending->slot, pending->job->passes);
     if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
+    // Timed with the render stage around collectPending()'s callers.
     if (pathTraced) {
-      auto traceStart = Clock::now();
       const ProductFrame& job = *pending->job;
       pathTraced->render(pending->shared->list, pending->cameraIndex, pathTraceSeed(options.seed, job.frame, job.product),
                          pending->job->passes, keepRadiance);
-      result.stages.render += since(traceStart);
     }
     submit(*pending);
     pending.reset();

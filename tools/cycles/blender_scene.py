@@ -203,12 +203,17 @@ def make_material(name, desc, bsdf_kind="principled"):
     n = _Nodes(mat.node_tree)
     n.tree.nodes.clear()
     out = n.new("ShaderNodeOutputMaterial")
-    if bsdf_kind == "lambert":
+    # A coat-less dielectric (specular_level 0, metallic 0) is Lambert in
+    # sdgbehave: a Diffuse BSDF, not Principled's Disney diffuse, whose
+    # retro-reflection differs from Lambert's at rough, grazing angles.
+    plain = not desc.get("maps") and desc.get("specular_level", 0.5) == 0 and desc.get("metallic", 0) == 0
+    if bsdf_kind == "lambert" or plain:
         bsdf = n.new("ShaderNodeBsdfDiffuse", Roughness=0.0)
         bsdf.inputs["Color"].default_value = (*[c * (1 - desc["metallic"]) for c in desc["base_color"]], 1.0)
         n.link(bsdf.outputs[0], out.inputs["Surface"])
         return mat
     bsdf = _principled(n)
+    bsdf.inputs["Specular"].default_value = desc.get("specular_level", 0.5)  # F0 = 0.08 x it, as OmniPBR
     maps = desc.get("maps", {})
     sampler = _Sampler(n, desc) if maps else None
     if "base_color" in maps:

@@ -276,6 +276,7 @@ def material_of(stage, p):
            "base_color": [float(c) for c in a("inputs:diffuse_color_constant")],
            "roughness": float(a("inputs:reflection_roughness_constant")),
            "metallic": float(a("inputs:metallic_constant")),
+           "specular_level": float(a("inputs:specular_level") if a("inputs:specular_level") is not None else 0.5),
            "texture_scale": [float(v) for v in a("inputs:texture_scale")],
            "texture_rotate": float(a("inputs:texture_rotate")),
            "project_uvw": bool(a("inputs:project_uvw"))}

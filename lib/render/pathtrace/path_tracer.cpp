@@ -187,13 +187,15 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     const bool onSurface = scene.intersect(ray, cutOuts, hit);
     ++counters.rays;
     // A light shape in front of the surface: its emission, and the path ends.
+    // Camera rays pass through light shapes: the rasterizer, the labels and
+    // Blender (whose lamps are invisible to the camera) do not show them
+    // either; reflections and the light they cast do.
     PtRay toLights = ray;
     if (onSurface) toLights.tMax = hit.t;
     LightHit lightHit;
-    if (lights.intersect(toLights, lightHit)) {
-      const float weight = depth == 0 ? 1.0f
-                                      : powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint,
-                                                                           previousNormal, ray.direction));
+    if (depth > 0 && lights.intersect(toLights, lightHit)) {
+      const float weight =
+          powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint, previousNormal, ray.direction));
       radiance += beta.cwiseProduct(lightHit.radiance) * weight;
       break;
     }
