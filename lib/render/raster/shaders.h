@@ -23,8 +23,29 @@ const float PI = 3.14159265358979;
 // A lat-long environment in OpenEXR's convention (render/latlong.h): the
 // dome's +Y is the pole, the image's centre looks along +Z, a quarter in
 // from the left along +X; the top row is uploaded first, at t = 0.
+// llvmpipe evaluates atan and acos in software at several times the cost of
+// a texture fetch, and a lit pixel maps two directions: polynomial forms
+// instead, within 0.002 radians (a sixth of a texel of the 512-wide top
+// specular level) and continuous across the seam.
+float fastAtan2(float y, float x) {
+  float ax = abs(x), ay = abs(y);
+  float a = min(ax, ay) / max(max(ax, ay), 1e-20);
+  float s = a * a;
+  float r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+  r = ay > ax ? 1.57079637 - r : r;
+  r = x < 0.0 ? 3.14159274 - r : r;
+  return y < 0.0 ? -r : r;
+}
+
+float fastAcos(float x) {  // Abramowitz and Stegun 4.4.45
+  float ax = min(abs(x), 1.0);
+  float r = ((-0.0187293 * ax + 0.0742610) * ax - 0.2121144) * ax + 1.5707288;
+  r *= sqrt(1.0 - ax);
+  return x < 0.0 ? PI - r : r;
+}
+
 vec2 latLong(vec3 d) {
-  return vec2(0.5 - atan(d.x, d.z) / (2.0 * PI), acos(clamp(d.y, -1.0, 1.0)) / PI);
+  return vec2(0.5 - fastAtan2(d.x, d.z) / (2.0 * PI), fastAcos(d.y) / PI);
 }
 
 // The documented tone curve, then sRGB encoding.
