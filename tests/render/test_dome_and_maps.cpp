@@ -12,9 +12,12 @@
 
 #include "render/raster/environment_map.h"
 #include "render/latlong.h"
+#include "test_images.h"
 #include "writers/png_encoder.h"
 
 using namespace sdg;
+using sdg::test::writePng;
+using sdg::test::writeRgbe;
 namespace fs = std::filesystem;
 
 namespace {
@@ -26,36 +29,6 @@ fs::path scratchFolder(const std::string& name) {
   return dir;
 }
 
-// A Radiance .hdr file, flat (uncompressed) RGBE scanlines, top row first.
-// Written here so the test controls every texel exactly.
-void writeRgbe(const fs::path& file, int w, int h, const std::function<Vec3f(int x, int y)>& texel) {
-  std::ofstream out(file, std::ios::binary);
-  out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " << h << " +X " << w << "\n";
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const Vec3f c = texel(x, y);
-      const float v = std::max({c.x(), c.y(), c.z()});
-      unsigned char rgbe[4] = {0, 0, 0, 0};
-      if (v > 1e-32f) {
-        int e = 0;
-        const float scale = std::frexp(v, &e) * 256.0f / v;
-        for (int k = 0; k < 3; ++k) rgbe[k] = static_cast<unsigned char>(c[k] * scale);
-        rgbe[3] = static_cast<unsigned char>(e + 128);
-      }
-      out.write(reinterpret_cast<const char*>(rgbe), 4);
-    }
-}
-
-void writePng(const fs::path& file, int w, int h, const std::function<std::array<uint8_t, 4>(int x, int y)>& texel) {
-  std::vector<uint8_t> rgba(size_t(w) * size_t(h) * 4);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const auto c = texel(x, y);
-      std::copy(c.begin(), c.end(), rgba.begin() + (ptrdiff_t(y) * w + x) * 4);
-    }
-  const std::vector<uint8_t> png = encodePng(rgba, uint32_t(w), uint32_t(h), PngPixels::Rgba8);
-  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-}
 
 // Every camera of a scene rendered with one renderer.
 std::vector<FramePasses> renderCameras(const std::string& yaml, RenderSettings settings) {

@@ -12,6 +12,7 @@
 
 #include "assets/image.h"
 #include "assets/mesh_source.h"
+#include "assets/texture_source.h"
 #include "core/diagnostics.h"
 #include "render/camera_math.h"
 #include "render/pathtrace/embree_scene.h"
@@ -148,15 +149,7 @@ void PathTracer::prepare(const RenderList& list, PtFrameData& frame) {
   frame.lights.build(list, c.scene.bounds(), [&](const RenderLight& light) -> const PtDomeMap* {
     auto it = c.domes.find(light.texture);
     if (it != c.domes.end()) return it->second.get();
-    ImageRgbaF map;
-    try {
-      std::optional<std::string> resolved = assets_.resolve(light.texture);
-      if (!resolved)
-        throw RunError("texture '" + light.texture + "' not found; " + assets_.describeSearch(light.texture));
-      map = loadImageLinear(*resolved);
-    } catch (const RunError& e) {
-      throw RunError(light.path + ": " + e.what());
-    }
+    ImageRgbaF map = loadDomeMap(light.texture, assets_, light.path);
     if (c.domes.size() >= kMaxCachedDomes) c.domes.erase(c.domes.begin());  // any: which one is not visible
     return c.domes.emplace(light.texture, std::make_unique<PtDomeMap>(std::move(map))).first->second.get();
   });

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "assets/texture_source.h"
 #include "core/diagnostics.h"
 
 namespace sdg {
@@ -60,28 +61,8 @@ void PtTextureCache::addEmbedded(const std::vector<EmbeddedImage>& images) {
 }
 
 ImageRgba8 PtTextureCache::decode(const std::string& key, TextureData data, const std::string& primPath) const {
-  try {
-    auto embedded = embedded_.find(key);
-    if (embedded != embedded_.end()) {
-      const EmbeddedImage& e = embedded->second;
-      const std::vector<uint8_t>& bytes = *e.bytes;
-      if (e.rawWidth == 0) return decodeImageRgba8(bytes.data(), bytes.size(), e.name, data);
-      // assimp's raw texels are b, g, r, a.
-      ImageRgba8 image{e.rawWidth, e.rawHeight, std::vector<uint8_t>(bytes.size())};
-      for (size_t i = 0; i + 3 < bytes.size(); i += 4) {
-        image.pixels[i] = bytes[i + 2];
-        image.pixels[i + 1] = bytes[i + 1];
-        image.pixels[i + 2] = bytes[i];
-        image.pixels[i + 3] = bytes[i + 3];
-      }
-      return image;
-    }
-    std::optional<std::string> resolved = assets_.resolve(key);
-    if (!resolved) throw RunError("texture '" + key + "' not found; " + assets_.describeSearch(key));
-    return loadImageRgba8(*resolved, data);
-  } catch (const RunError& e) {
-    throw RunError(primPath + ": " + e.what());
-  }
+  auto embedded = embedded_.find(key);
+  return decodeTextureImage(key, embedded == embedded_.end() ? nullptr : &embedded->second, assets_, data, primPath);
 }
 
 const PtTexture* PtTextureCache::get(const std::string& key, TextureData data, const std::string& primPath) {

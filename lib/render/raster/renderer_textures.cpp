@@ -11,6 +11,7 @@
 #include "render/camera_math.h"
 #include "render/raster/renderer_internal.h"
 #include "render/raster/shaders.h"
+#include "assets/texture_source.h"
 #include "render/raster/environment_map.h"
 #include "render/raster/gl_textures.h"
 
@@ -19,28 +20,9 @@ namespace sdg {
 using namespace raster_detail;
 
 ImageRgba8 Renderer::decodeTexture(const std::string& key, const std::string& primPath, TextureData data) const {
-  try {
-    auto embedded = embeddedImages_.find(key);
-    if (embedded != embeddedImages_.end()) {
-      const EmbeddedImage& e = embedded->second;
-      const std::vector<uint8_t>& bytes = *e.bytes;
-      if (e.rawWidth == 0) return decodeImageRgba8(bytes.data(), bytes.size(), e.name, data);
-      // assimp's raw texels are b, g, r, a.
-      ImageRgba8 image{e.rawWidth, e.rawHeight, std::vector<uint8_t>(bytes.size())};
-      for (size_t i = 0; i + 3 < bytes.size(); i += 4) {
-        image.pixels[i] = bytes[i + 2];
-        image.pixels[i + 1] = bytes[i + 1];
-        image.pixels[i + 2] = bytes[i];
-        image.pixels[i + 3] = bytes[i + 3];
-      }
-      return image;
-    }
-    std::optional<std::string> resolved = assets_.resolve(key);
-    if (!resolved) throw RunError("texture '" + key + "' not found; " + assets_.describeSearch(key));
-    return loadImageRgba8(*resolved, data);
-  } catch (const RunError& e) {
-    throw RunError(primPath + ": " + e.what());
-  }
+  auto embedded = embeddedImages_.find(key);
+  return decodeTextureImage(key, embedded == embeddedImages_.end() ? nullptr : &embedded->second, assets_, data,
+                            primPath);
 }
 
 const Renderer::GpuTexture& Renderer::texture(const std::string& key, const std::string& primPath, TextureData data) {
@@ -70,15 +52,7 @@ void Renderer::bindMaps(const MaterialMaps& maps, const std::string& primPath) {
 const Renderer::DomeTextures& Renderer::dome(const RenderLight& light) {
   auto it = domes_.find(light.texture);
   if (it != domes_.end()) return it->second;
-  ImageRgbaF map;
-  try {
-    std::optional<std::string> resolved = assets_.resolve(light.texture);
-    if (!resolved)
-      throw RunError("texture '" + light.texture + "' not found; " + assets_.describeSearch(light.texture));
-    map = loadImageLinear(*resolved);
-  } catch (const RunError& e) {
-    throw RunError(light.path + ": " + e.what());
-  }
+  const ImageRgbaF map = loadDomeMap(light.texture, assets_, light.path);
   if (domes_.size() >= kMaxCachedDomes) {
     auto oldest = domes_.begin();  // any: which one goes is not visible in the output
     unsigned ids[] = {oldest->second.background, oldest->second.specular, oldest->second.irradiance};
