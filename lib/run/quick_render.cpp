@@ -31,17 +31,18 @@ QuickRenderResult renderOnePicture(const LoadedScene& loaded, const QuickRenderO
                                                         text::join(names, ", ") + text::didYouMean(wanted, names));
   }
   const RenderSettings settings = renderSettingsFor(scene, options.render);
-  std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
-  Renderer renderer(*context, loaded.assets, settings);
   FramePasses frame;
-  std::string device = context->rendererName() + " via " + context->backend();
+  std::string device;
   if (settings.mode == RenderMode::PathTraced) {
-    // The picture is the path tracer's; the rasterizer is not needed.
+    // The picture is the path tracer's alone: no GL context is made.
     frame.resize(settings.width, settings.height, PassSelection::colourOnly());
     PathTracedColor(loaded.assets, settings, 0).render(list, index, pathTraceSeed(0, 0, index), frame, false);
     device = "path tracer (CPU, Embree)";
   } else {
+    std::unique_ptr<GlContext> context = glContextFor(scene, options.render);
+    Renderer renderer(*context, loaded.assets, settings);
     renderer.render(list, index, frame, PassSelection::colourOnly());
+    device = context->rendererName() + " via " + context->backend();
   }
   std::vector<uint8_t> png = encodePng(frame.rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8,
                                         PngOptions::renderedImage());
