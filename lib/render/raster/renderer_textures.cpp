@@ -19,6 +19,32 @@ namespace sdg {
 
 using namespace raster_detail;
 
+namespace {
+
+// The dome as the camera sees it is halved (2 x 2 box averages) until at
+// most four texels per output pixel span the horizon (2048 at least): more
+// is more than any camera shows, and uploading a 4096-wide map's 8 million
+// texels as half floats costs llvmpipe a quarter second.
+ImageRgbaF halved(const ImageRgbaF& in) {
+  ImageRgbaF half{in.width / 2, in.height / 2, std::vector<float>(size_t(in.width / 2) * (in.height / 2) * 4)};
+  for (uint32_t y = 0; y < half.height; ++y) {
+    const float* top = in.pixels.data() + size_t(2 * y) * in.width * 4;
+    const float* bottom = top + size_t(in.width) * 4;
+    float* out = half.pixels.data() + size_t(y) * half.width * 4;
+    for (uint32_t x = 0; x < half.width; ++x)
+      for (size_t c = 0; c < 4; ++c)
+        out[4 * x + c] = 0.25f * (top[8 * x + c] + top[8 * x + 4 + c] + bottom[8 * x + c] + bottom[8 * x + 4 + c]);
+  }
+  return half;
+}
+
+// Whether the dome is wider than the camera needs and can be halved.
+bool halvable(const ImageRgbaF& map, int maxWidth) {
+  return int(map.width) > maxWidth && map.width % 2 == 0 && map.height % 2 == 0;
+}
+
+}  // namespace
+
 ImageRgba8 Renderer::decodeTexture(const std::string& key, const std::string& primPath, TextureData data) const {
   auto embedded = embeddedImages_.find(key);
   return decodeTextureImage(key, embedded == embeddedImages_.end() ? nullptr : &embedded->second, assets_, data,
@@ -61,7 +87,14 @@ const Renderer::DomeTextures& Renderer::dome(const RenderLight& light) {
   }
   const PrefilteredEnvironment prefiltered = prefilterEnvironment(map);
   DomeTextures d;
-  d.background = makeLatLongTexture(gl_, map);
+  const int backgroundWidth = std::max(2048, 4 * settings_.width);
+  if (halvable(map, backgroundWidth)) {
+    ImageRgbaF background = halved(map);
+    while (halvable(background, backgroundWidth)) background = halved(background);
+    d.background = makeLatLongTexture(gl_, background);
+  } else {
+    d.background = makeLatLongTexture(gl_, map);
+  }
   std::vector<const LatLong*> levels;
   for (const LatLong& level : prefiltered.specular) levels.push_back(&level);
   d.specular = makeLatLongTexture(gl_, levels);
