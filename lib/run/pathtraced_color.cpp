@@ -1,7 +1,5 @@
 #include "run/pathtraced_color.h"
 
-#include <algorithm>
-
 namespace sdg {
 namespace {
 
@@ -20,7 +18,6 @@ PathTraceSettings tracerSettings(const RenderSettings& s, int threads) {
   p.threads = threads;
   return p;
 }
-
 
 DenoiseSettings denoiseSettings(int threads) {
   DenoiseSettings d;
