@@ -67,14 +67,7 @@ TEST_CASE("dome: the camera sees the map in OpenEXR's lat-long orientation, its 
   const fs::path dir = scratchFolder("orientation");
   // Sectors by longitude (OpenEXR: u = 0.25 looks along the dome's +X, 0.5
   // along +Z, 0.75 along -X) and a yellow cap at the pole.
-  writeRgbe(dir / "sectors.hdr", 64, 32, [](int x, int y) {
-    if (y < 8) return Vec3f(4, 4, 0);
-    if (y >= 24) return Vec3f(0.5f, 0.5f, 0.5f);
-    if (x >= 8 && x < 24) return Vec3f(4, 0, 0);
-    if (x >= 24 && x < 40) return Vec3f(0, 4, 0);
-    if (x >= 40 && x < 56) return Vec3f(0, 0, 4);
-    return Vec3f(4, 4, 4);
-  });
+  test::writeSectorSky(dir / "sectors.hdr");
   // Z-up stage: the dome's +Y turns to +Z, so its +X stays +X, +Z becomes
   // -Y and -Z becomes +Y. Cameras at the origin look along each axis.
   const std::string yaml = "version: 1\nprims:\n  /Sky: {type: DomeLight, inputs:intensity: 250, inputs:texture:file: " +

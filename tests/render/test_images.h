@@ -34,6 +34,21 @@ inline void writeRgbe(const std::filesystem::path& file, int w, int h,
     }
 }
 
+// The dome orientation tests' 64 x 32 map: sectors by longitude (OpenEXR:
+// u = 0.25 looks along the dome's +X, 0.5 along +Z, 0.75 along -X) at value
+// 4 in red, green, blue and white (-Z), a yellow cap at the pole (top 8
+// rows) and grey 0.5 below the bottom 8.
+inline void writeSectorSky(const std::filesystem::path& file) {
+  writeRgbe(file, 64, 32, [](int x, int y) {
+    if (y < 8) return Vec3f(4, 4, 0);
+    if (y >= 24) return Vec3f(0.5f, 0.5f, 0.5f);
+    if (x >= 8 && x < 24) return Vec3f(4, 0, 0);
+    if (x >= 24 && x < 40) return Vec3f(0, 4, 0);
+    if (x >= 40 && x < 56) return Vec3f(0, 0, 4);
+    return Vec3f(4, 4, 4);
+  });
+}
+
 inline void writePng(const std::filesystem::path& file, int w, int h,
                      const std::function<std::array<uint8_t, 4>(int x, int y)>& texel) {
   std::vector<uint8_t> rgba(size_t(w) * size_t(h) * 4);

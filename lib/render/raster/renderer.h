@@ -84,7 +84,6 @@ class Renderer {
   };
   struct GpuTexture {
     unsigned id = 0;
-    int levels = 1;
   };
   const GpuMesh& mesh(const RenderItem& item);
   // meshSlots_[i] = the slot of list.items[i]'s mesh (loading it if needed).

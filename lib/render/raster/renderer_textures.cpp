@@ -57,8 +57,7 @@ const Renderer::GpuTexture& Renderer::texture(const std::string& key, const std:
   if (it != cache.end()) return it->second;
   const ImageRgba8 image = decodeTexture(key, primPath, data);
   const unsigned t = data == TextureData::Color ? makeSrgbTexture(gl_, image) : makeDataTexture(gl_, image);
-  const int levels = 1 + int(std::floor(std::log2(double(std::max(image.width, image.height)))));
-  return cache.emplace(key, GpuTexture{t, levels}).first->second;
+  return cache.emplace(key, GpuTexture{t}).first->second;
 }
 
 void Renderer::bindMaps(const MaterialMaps& maps, const std::string& primPath) {
