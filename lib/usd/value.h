@@ -1,0 +1,146 @@
+#pragma once
+// A field value of a USD layer, as Sdf stores it: the scalar and array value
+// types of attributes (bool, integers, half/float/double, vectors,
+// quaternions, matrices, strings, tokens, asset paths) and the metadata
+// types (dictionaries, list ops, references, payloads, path and token
+// vectors, layer offsets, specifiers, variabilities, variant selections,
+// time samples, value blocks). Both readers (usda text, usdc crate) produce
+// these and the writer consumes them, so composition and scene_io never
+// know which form a layer had.
+//
+// Numbers are kept as doubles whatever their USD scalar type: every value an
+// SDG scene uses (int32, float, half, double, and int64 below 2^53) is exact
+// in a double, and one numeric store keeps the type small. `kind` keeps the
+// USD type so that writing a layer back gives the same type name.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sdg::usd {
+
+// Value kinds, named after Sdf's value types (crate files number them in
+// the same order; the readers map between the two).
+enum class Kind : uint8_t {
+  Empty,  // no value (a field that holds nothing)
+  // Numeric scalars (arrays when Value::isArray).
+  Bool, UChar, Int, UInt, Int64, UInt64, Half, Float, Double, TimeCode,
+  Vec2i, Vec2h, Vec2f, Vec2d,
+  Vec3i, Vec3h, Vec3f, Vec3d,
+  Vec4i, Vec4h, Vec4f, Vec4d,
+  Quath, Quatf, Quatd,  // stored (real, i, j, k) — crate and usda order differ; readers normalise
+  Matrix2d, Matrix3d, Matrix4d,  // row-major, as USD writes them
+  // Text scalars (arrays when Value::isArray).
+  String, Token, AssetPath,
+  // Metadata.
+  Dictionary,
+  TokenListOp, StringListOp, PathListOp, ReferenceListOp, PayloadListOp,
+  IntListOp, Int64ListOp, UIntListOp, UInt64ListOp,
+  PathVector, TokenVector, StringVector, DoubleVector, LayerOffsetVector,
+  Specifier, Permission, Variability,
+  VariantSelectionMap,
+  TimeSamples,
+  Reference, Payload,  // single ones (a payload field of crate 0.8 holds one)
+  ValueBlock,          // `None` in usda: an authored "no value"
+  Unsupported,         // a type this reader keeps but does not interpret (its name in `strings[0]`)
+};
+
+const char* kindName(Kind kind);            // "float3", "token", "dictionary", ...
+int componentCount(Kind kind);              // 1 for scalars, 2..4 for vectors, 4 quats, 4/9/16 matrices; 0 non-numeric
+bool isNumeric(Kind kind);
+bool isText(Kind kind);
+
+enum class Specifier : uint8_t { Def, Over, Class };
+enum class Variability : uint8_t { Varying, Uniform };
+enum class Permission : uint8_t { Public, Private };
+
+struct LayerOffset {
+  double offset = 0.0;
+  double scale = 1.0;
+  bool operator==(const LayerOffset&) const = default;
+};
+
+class Value;
+using Dictionary = std::map<std::string, Value>;
+
+// A reference or a payload: an asset path ("" = internal), a prim path in
+// it ("" = the layer's defaultPrim), a layer offset, custom data.
+struct Reference {
+  std::string assetPath;
+  std::string primPath;
+  LayerOffset offset;
+  std::shared_ptr<Dictionary> customData;  // null when none is authored
+};
+
+// Sdf's list op: either an explicit list, or edits to the weaker opinion's
+// list (delete, then prepend and append; `added` and `ordered` are the old
+// forms, kept for writing back).
+template <class T>
+struct ListOp {
+  bool isExplicit = false;
+  std::vector<T> explicitItems, addedItems, prependedItems, appendedItems, deletedItems, orderedItems;
+
+  // The list after applying this op to `weaker` (USD's SdfListOp::ApplyOperations
+  // semantics: explicit replaces; otherwise delete, then prepend at the front
+  // and append at the back, each item appearing once).
+  std::vector<T> applyTo(const std::vector<T>& weaker) const;
+  bool empty() const {
+    return !isExplicit && addedItems.empty() && prependedItems.empty() && appendedItems.empty() &&
+           deletedItems.empty() && orderedItems.empty();
+  }
+};
+
+struct TimeSamples;
+
+class Value {
+ public:
+  Kind kind = Kind::Empty;
+  bool isArray = false;
+  // Numeric kinds: componentCount(kind) numbers per element, elements in order.
+  std::vector<double> numbers;
+  // String, Token, AssetPath (one per element), PathVector, TokenVector,
+  // StringVector, Unsupported (the type name).
+  std::vector<std::string> strings;
+  // Specifier, Variability, Permission: the enum's value.
+  int enumValue = 0;
+  // Dictionary and VariantSelectionMap (string values as Kind::String).
+  std::shared_ptr<Dictionary> dictionary;
+  std::shared_ptr<ListOp<std::string>> textListOp;   // Token/String/Path list ops
+  std::shared_ptr<ListOp<int64_t>> intListOp;        // the integer list ops
+  std::shared_ptr<ListOp<Reference>> referenceListOp;  // Reference and Payload list ops
+  std::shared_ptr<std::vector<Reference>> references;  // Reference / Payload: exactly one element
+  std::shared_ptr<std::vector<LayerOffset>> layerOffsets;
+  std::shared_ptr<TimeSamples> timeSamples;
+
+  bool empty() const { return kind == Kind::Empty; }
+  size_t elementCount() const;  // 1 for a scalar; array length otherwise
+
+  // Builders for the common cases.
+  static Value scalar(Kind kind, std::vector<double> components);
+  static Value array(Kind kind, std::vector<double> flatComponents);
+  static Value text(Kind kind, std::string s);  // String, Token or AssetPath
+  static Value textArray(Kind kind, std::vector<std::string> items);
+  static Value specifier(Specifier s);
+  static Value variability(Variability v);
+  static Value dict(Dictionary d);
+  static Value block();
+
+  // Accessors that throw std::invalid_argument naming the expected kind.
+  double asDouble() const;                   // a numeric scalar of one component
+  bool asBool() const;
+  const std::string& asString() const;       // String, Token or AssetPath scalar
+  const std::vector<std::string>& asStrings() const;
+};
+
+struct TimeSamples {
+  std::vector<double> times;  // ascending
+  std::vector<Value> values;  // one per time (a ValueBlock where blocked)
+  // The value held at `time` (USD: the sample at or before it, the first
+  // before the first sample; no interpolation here — callers that need
+  // linear interpolation of numbers do it themselves).
+  const Value* heldAt(double time) const;
+};
+
+}  // namespace sdg::usd
