@@ -29,6 +29,13 @@ void addVerify(CLI::App& app, int& exitCode) {
     try {
       RunInfo info = readRunInfo(*dir);
       expected = info.frames() * info.products.size();
+      // Frames of shards that ran with other inputs do not make one dataset.
+      for (const std::string& p : shardInputProblems(*dir, info)) {
+        std::cout << *dir << ": " << p << "\n";
+        report.problems.push_back(p);
+      }
+      std::cout << *dir << ": inputs " << info.inputs.identity().substr(0, 16) << " (" << info.inputs.files.size()
+                << " files, sdgbehave " << info.inputs.version << ")\n";
     } catch (const RunError&) {
     }
     const bool complete = expected == 0 || entries.size() == expected;

@@ -108,25 +108,33 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   return std::nullopt;
 }
 
-void checkStageFiles(const Stage& stage, const BehaviorCatalog& catalog, const AssetResolver& resolver,
-                     Diagnostics& diag) {
-  auto check = [&](const Prim& prim, const std::string& name, const AttributeSpec& spec) {
+void forEachStageFile(const Stage& stage, const BehaviorCatalog& catalog, const AssetResolver& resolver,
+                      const StageFileVisitor& visit) {
+  auto visitAttribute = [&](const Prim& prim, const std::string& name, const AttributeSpec& spec) {
     const Attribute* attr = prim.findAttribute(name);
     if (!attr) return;
     const std::string owner = prim.path() + "." + name;
-    FileKind kind = spec.files == FileKind::None ? FileKind::Any : spec.files;
-    for (const std::string& entry : fileEntriesOf(*attr, spec, resolver, owner))
-      if (std::optional<std::string> problem = fileProblem(entry, kind, resolver))
-        diag.error(attr->loc.known() ? attr->loc : prim.loc(), owner + ": " + *problem);
+    const FileKind kind = spec.files == FileKind::None ? FileKind::Any : spec.files;
+    for (const std::string& entry : fileEntriesOf(*attr, spec, resolver, owner)) visit(prim, *attr, owner, entry, kind);
   };
   stage.traverse([&](const Prim& prim) {
     for (const AttributeSpec& spec : primTypeInfo(prim.type()).attributes)
-      if (namesFiles(spec)) check(prim, spec.name, spec);
+      if (namesFiles(spec)) visitAttribute(prim, spec.name, spec);
     for (const std::string& behavior : prim.behaviors())
       if (const BehaviorSpec* b = catalog.find(behavior))
         for (const AttributeSpec& spec : b->variables)
-          if (namesFiles(spec)) check(prim, exposedAttributeName(behavior, spec.name), spec);
+          if (namesFiles(spec)) visitAttribute(prim, exposedAttributeName(behavior, spec.name), spec);
   });
+}
+
+void checkStageFiles(const Stage& stage, const BehaviorCatalog& catalog, const AssetResolver& resolver,
+                     Diagnostics& diag) {
+  forEachStageFile(stage, catalog, resolver,
+                   [&](const Prim& prim, const Attribute& attr, const std::string& owner, const std::string& entry,
+                       FileKind kind) {
+                     if (std::optional<std::string> problem = fileProblem(entry, kind, resolver))
+                       diag.error(attr.loc.known() ? attr.loc : prim.loc(), owner + ": " + *problem);
+                   });
 }
 
 }  // namespace sdg

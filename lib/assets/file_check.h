@@ -10,6 +10,7 @@
 // when an Isaac asset root is configured; otherwise an entry that the user
 // did not write is left out, with one warning per process saying how to
 // supply the root.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,15 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
 
 // "mesh", "texture" or "file", for messages.
 const char* fileKindNoun(FileKind kind);
+
+// Calls `visit` for every file entry the stage's prims and attached behaviors
+// name (the entries checkStageFiles checks), in traversal order. `owner` is
+// "<prim path>.<attribute>"; `kind` is FileKind::Any where the spec says
+// nothing narrower.
+using StageFileVisitor = std::function<void(const Prim& prim, const Attribute& attr, const std::string& owner,
+                                            const std::string& entry, FileKind kind)>;
+void forEachStageFile(const Stage& stage, const BehaviorCatalog& catalog, const AssetResolver& resolver,
+                      const StageFileVisitor& visit);
 
 // Every file the stage's prims and attached behaviors name; each problem is
 // reported at the attribute that names the file (or its prim).

@@ -11,6 +11,10 @@
 namespace sdg {
 namespace fs = std::filesystem;
 
+namespace {
+constexpr const char* kContactSheetFile = "contact_sheet.png";
+}  // namespace
+
 FinalizeResult finalizeDataset(const std::string& dir, const RunInfo& info) {
   std::vector<ManifestEntry> entries = readManifests(dir);
   // Every (frame, product) of the run must be there, exactly once.
@@ -36,12 +40,22 @@ FinalizeResult finalizeDataset(const std::string& dir, const RunInfo& info) {
     std::vector<std::string> tiles;
     for (uint64_t frame : contactSheetFrames(info.frames()))
       tiles.push_back((fs::path(dir) / contactSheetTilePath(frame)).string());
-    writeFileAtomic((fs::path(dir) / "contact_sheet.png").string(), composeContactSheet(tiles));
+    writeFileAtomic((fs::path(dir) / kContactSheetFile).string(), composeContactSheet(tiles));
     ++result.files;
   }
   writeCanonicalManifest(dir, entries);
   ++result.files;
   return result;
+}
+
+void writeContactSheetOfFinishedFrames(const std::string& dir, const RunInfo& info) {
+  std::vector<std::string> tiles;
+  std::error_code ec;
+  for (uint64_t frame : contactSheetFrames(info.frames())) {
+    const fs::path tile = fs::path(dir) / contactSheetTilePath(frame);
+    if (fs::is_regular_file(tile, ec)) tiles.push_back(tile.string());
+  }
+  if (!tiles.empty()) writeFileAtomic((fs::path(dir) / kContactSheetFile).string(), composeContactSheet(tiles));
 }
 
 }  // namespace sdg

@@ -18,4 +18,9 @@ struct FinalizeResult {
 // RunError naming the first missing frame when the folder is incomplete.
 FinalizeResult finalizeDataset(const std::string& dir, const RunInfo& info);
 
+// After a failed run: contact_sheet.png of the sheet frames that were
+// finished (their tiles exist), so a look shows how far it got. Nothing
+// when none was.
+void writeContactSheetOfFinishedFrames(const std::string& dir, const RunInfo& info);
+
 }  // namespace sdg

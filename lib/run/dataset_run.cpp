@@ -20,6 +20,7 @@
 #include "run/progress.h"
 #include "run/record.h"
 #include "run/renderer_bringup.h"
+#include "run/run_inputs.h"
 #include "run/run_summary.h"
 #include "run/scene_setup.h"
 #include "stage/path.h"
@@ -148,7 +149,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     info.cocoTaxonomy = types.empty() ? std::string("class") : types.front();
   }
   info.contactSheet = scene.capture.get("contact_sheet").get<bool>();
-  prepareOutputFolder(options.outDir, info, FolderPolicy{options.overwrite, options.resume, plan.shard.sharded()});
+  info.inputs = collectRunInputs(loaded);
+  prepareOutputFolder(options.outDir, info,
+                      FolderPolicy{options.overwrite, options.resume, plan.shard.sharded(), plan.shard.tag()});
   DatasetRunResult result;
   result.info = info;
   std::set<uint64_t> finished;
@@ -289,90 +292,109 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
   };
 
 
-  for (uint64_t iteration = 0; iteration < plan.iterations; ++iteration) {
-    const uint64_t first = iteration * plan.framesPerIteration;
-    const uint64_t begin = std::max(first, plan.ownedBegin());
-    const uint64_t end = std::min(first + plan.framesPerIteration, plan.ownedEnd());
-    bool work = false;
-    for (uint64_t f = begin; f < end; ++f) work = work || !finished.count(f);
-    if (!work) continue;  // not ours, or all done: no pre-roll either
+  // A failure (a behavior's exception, on_stop, a lost camera, a signal)
+  // keeps the frames finished before it: the one still in read-back is
+  // collected and every queued frame is written with its manifest line, so
+  // --resume continues from them; the contact sheet shows what exists.
+  try {
+    for (uint64_t iteration = 0; iteration < plan.iterations; ++iteration) {
+      const uint64_t first = iteration * plan.framesPerIteration;
+      const uint64_t begin = std::max(first, plan.ownedBegin());
+      const uint64_t end = std::min(first + plan.framesPerIteration, plan.ownedEnd());
+      bool work = false;
+      for (uint64_t f = begin; f < end; ++f) work = work || !finished.count(f);
+      if (!work) continue;  // not ours, or all done: no pre-roll either
 
-    scene.stage = original;
-    RunBehaviorSetup setup;
-    BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
-    behaviorContext.iteration = iteration;
-    behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
-      writeSimulationFrame(stage, bringUp.renderer(), cameraPaths, productNames, options.outDir, result.simulationFrames++);
-    };
-    BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
-    runtime.init();
-    auto t0 = Clock::now();
-    runPreroll(scene.events, runtime);
-    result.stages.preroll += since(t0);
-    ++result.iterationsRun;
-    for (nlohmann::ordered_json& report : setup.reports) {
-      report["iteration"] = iteration;
-      result.settle.push_back(report);
-    }
-    if (!options.saveStagePath.empty() && result.iterationsRun == 1) saveStageAfterPreroll(loaded, options.saveStagePath);
-    if (!options.recordPath.empty() && !recorder) recorder = std::make_unique<ChangeRecorder>(options.recordPath, original);
-    if (recorder) recorder->recordPreroll(setup.reports, scene.stage);
-
-    runtime.play();
-    Renderer& renderer = bringUp.renderer();
-    for (uint64_t frame = first; frame < end; ++frame) {
-      t0 = Clock::now();
-      runtime.update();
-      result.stages.behaviors += since(t0);
-      if (frame < begin || finished.count(frame)) continue;  // stepped, not rendered
-      if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
-      // What every render product of this frame shares, read by the pool.
-      auto shared = std::make_shared<FrameShared>();
-      shared->list = buildRenderList(scene.stage);
-      const RenderList& list = shared->list;
-      shared->semantics = computeSemantics(scene.stage, list, semanticTypes);
-      shared->itemBounds.reserve(list.items.size());
-      for (const RenderItem& item : list.items) shared->itemBounds.push_back(renderer.meshBounds(item));
-      std::vector<std::vector<size_t>> groups;
-      for (const SemanticEntity& e : shared->semantics.entities) groups.push_back(e.items);
-
-      for (size_t product = 0; product < cameraPaths.size(); ++product) {
-        size_t cameraIndex = list.cameras.size();
-        for (size_t c = 0; c < list.cameras.size(); ++c)
-          if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
-        if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
-        auto job = std::make_shared<ProductFrame>();
-        job->frame = frame;
-        job->product = product;
-        job->camera = list.cameras[cameraIndex];
-        job->metersPerUnit = list.metersPerUnit;
-        job->passes = spareFrames.take();
-        auto renderStart = Clock::now();
-        // Draw this product and start its read-back; while the GPU works,
-        // collect the previous product (its read-back is done by now) and
-        // hand it to the pool.
-        const int slot = int(queued++ & 1);
-        // Sheet frames also read the ids back: their boxes come from them.
-        const bool toSheet = product == 0 && sheetFrames.count(frame);
-        PassSelection productPasses = passes;
-        productPasses.ids = passes.ids || toSheet;
-        renderer.queue(list, cameraIndex, productPasses, slot);
-        std::shared_ptr<Renderer::CoverageMasks> masks;
-        if (coverage) {
-          masks = std::make_shared<Renderer::CoverageMasks>(spareMasks.take());
-          renderer.queueCoverage(list, cameraIndex, groups, slot);
-        }
-        collectPending();
-        pending = PendingProduct{job, shared, masks, cameraIndex, toSheet, slot};
-        result.stages.render += since(renderStart);
+      scene.stage = original;
+      RunBehaviorSetup setup;
+      BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
+      behaviorContext.iteration = iteration;
+      behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
+        writeSimulationFrame(stage, bringUp.renderer(), cameraPaths, productNames, options.outDir, result.simulationFrames++);
+      };
+      BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
+      runtime.init();
+      auto t0 = Clock::now();
+      runPreroll(scene.events, runtime);
+      result.stages.preroll += since(t0);
+      ++result.iterationsRun;
+      for (nlohmann::ordered_json& report : setup.reports) {
+        report["iteration"] = iteration;
+        result.settle.push_back(report);
       }
-      log::debug("frame " + std::to_string(frame) + " rendered");
-      ++result.frames;
-      progress.update(result.frames);
+      if (!options.saveStagePath.empty() && result.iterationsRun == 1) saveStageAfterPreroll(loaded, options.saveStagePath);
+      if (!options.recordPath.empty() && !recorder) recorder = std::make_unique<ChangeRecorder>(options.recordPath, original);
+      if (recorder) recorder->recordPreroll(setup.reports, scene.stage);
+
+      runtime.play();
+      Renderer& renderer = bringUp.renderer();
+      for (uint64_t frame = first; frame < end; ++frame) {
+        t0 = Clock::now();
+        runtime.update();
+        result.stages.behaviors += since(t0);
+        if (frame < begin || finished.count(frame)) continue;  // stepped, not rendered
+        if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
+        // What every render product of this frame shares, read by the pool.
+        auto shared = std::make_shared<FrameShared>();
+        shared->list = buildRenderList(scene.stage);
+        const RenderList& list = shared->list;
+        shared->semantics = computeSemantics(scene.stage, list, semanticTypes);
+        shared->itemBounds.reserve(list.items.size());
+        for (const RenderItem& item : list.items) shared->itemBounds.push_back(renderer.meshBounds(item));
+        std::vector<std::vector<size_t>> groups;
+        for (const SemanticEntity& e : shared->semantics.entities) groups.push_back(e.items);
+
+        for (size_t product = 0; product < cameraPaths.size(); ++product) {
+          size_t cameraIndex = list.cameras.size();
+          for (size_t c = 0; c < list.cameras.size(); ++c)
+            if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
+          if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
+          auto job = std::make_shared<ProductFrame>();
+          job->frame = frame;
+          job->product = product;
+          job->camera = list.cameras[cameraIndex];
+          job->metersPerUnit = list.metersPerUnit;
+          job->passes = spareFrames.take();
+          auto renderStart = Clock::now();
+          // Draw this product and start its read-back; while the GPU works,
+          // collect the previous product (its read-back is done by now) and
+          // hand it to the pool.
+          const int slot = int(queued++ & 1);
+          // Sheet frames also read the ids back: their boxes come from them.
+          const bool toSheet = product == 0 && sheetFrames.count(frame);
+          PassSelection productPasses = passes;
+          productPasses.ids = passes.ids || toSheet;
+          renderer.queue(list, cameraIndex, productPasses, slot);
+          std::shared_ptr<Renderer::CoverageMasks> masks;
+          if (coverage) {
+            masks = std::make_shared<Renderer::CoverageMasks>(spareMasks.take());
+            renderer.queueCoverage(list, cameraIndex, groups, slot);
+          }
+          collectPending();
+          pending = PendingProduct{job, shared, masks, cameraIndex, toSheet, slot};
+          result.stages.render += since(renderStart);
+        }
+        log::debug("frame " + std::to_string(frame) + " rendered");
+        ++result.frames;
+        progress.update(result.frames);
+      }
+      runtime.stop();
+      if (recorder) recorder->recordStop(scene.stage);
+      runtime.destroy();
     }
-    runtime.stop();
-    if (recorder) recorder->recordStop(scene.stage);
-    runtime.destroy();
+  } catch (...) {
+    try {
+      collectPending();
+    } catch (const std::exception& e) {
+      log::warn(std::string("the frame being read back when the run failed is lost: ") + e.what());
+    }
+    try {
+      pool.finish();
+      if (info.contactSheet && !plan.shard.sharded()) writeContactSheetOfFinishedFrames(options.outDir, info);
+    } catch (const std::exception& e) {
+      log::warn(std::string("while keeping the finished frames: ") + e.what());
+    }
+    throw;
   }
   collectPending();
   progress.finish();

@@ -7,6 +7,7 @@
 
 #include "core/diagnostics.h"
 #include "core/file_io.h"
+#include "core/text.h"
 #include "run/dataset_finalize.h"
 
 namespace sdg {
@@ -39,7 +40,20 @@ std::vector<nlohmann::ordered_json> shardSummaries(const std::string& dir) {
 
 MergeResult mergeShards(const std::string& dir) {
   const RunInfo info = readRunInfo(dir);
+  // Shards that ran with other inputs (a script edited between two shards'
+  // starts) would make one dataset of two runs: refuse, naming the files.
+  if (std::vector<std::string> problems = shardInputProblems(dir, info); !problems.empty())
+    throw SceneError(SourceLoc{dir, 0, 0}, "the shards did not all run with the same inputs:\n  " +
+                                               text::join(problems, "\n  ") +
+                                               "\nrerun those shards with the run's inputs (--resume), then merge again");
   FinalizeResult finalized = finalizeDataset(dir, info);
+  // Checked: the per-shard records go, as the per-shard manifests do, so a
+  // merged folder holds the same files as a whole run's.
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / kPartsFolder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.starts_with("inputs.") && name.ends_with(".json")) fs::remove(e.path(), ec);
+  }
   MergeResult result;
   result.frames = finalized.frames;
   std::vector<nlohmann::ordered_json> shards = shardSummaries(dir);
@@ -54,6 +68,7 @@ MergeResult mergeShards(const std::string& dir) {
     j["scene"] = shards.front()["scene"];
   }
   j["scene_hash"] = info.sceneHash;
+  j["inputs_identity"] = info.inputs.identity();
   j["seed"] = info.seed;
   j["frames"] = info.frames();
   j["iterations"] = info.iterations;

@@ -1,5 +1,6 @@
 #include "run/output_folder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -10,6 +11,7 @@
 
 #include "core/diagnostics.h"
 #include "core/file_io.h"
+#include "core/text.h"
 
 namespace sdg {
 namespace fs = std::filesystem;
@@ -40,6 +42,7 @@ nlohmann::ordered_json RunInfo::toJson() const {
   j["coco_file"] = cocoFile;
   j["coco_taxonomy"] = cocoTaxonomy;
   j["contact_sheet"] = contactSheet;
+  j["inputs"] = inputs.toJson();
   return j;
 }
 
@@ -55,6 +58,7 @@ RunInfo RunInfo::fromJson(const nlohmann::json& j) {
   info.cocoFile = j.at("coco_file").get<std::string>();
   info.cocoTaxonomy = j.at("coco_taxonomy").get<std::string>();
   info.contactSheet = j.at("contact_sheet").get<bool>();
+  if (j.contains("inputs")) info.inputs = RunInputs::fromJson(j.at("inputs"));
   return info;
 }
 
@@ -95,7 +99,13 @@ void prepareOutputFolder(const std::string& dir, const RunInfo& info, const Fold
         if (e.path().filename().string().rfind("manifest", 0) == 0) fs::remove(e.path(), ec);
     } else if (hasRun && (policy.resume || policy.sharded)) {
       RunInfo existing = readRunInfo(dir);
-      if (!(existing == info))
+      if (!(existing.inputs == info.inputs))
+        throw SceneError(kOut, dir + " holds a run of other inputs; these changed since it began:\n  " +
+                                   text::join(inputChanges(existing.inputs, info.inputs), "\n  ") +
+                                   "\nrestore them, or start the run again in another folder (or with --overwrite)");
+      RunInfo settings = existing;
+      settings.inputs = info.inputs;
+      if (!(settings == info))
         throw SceneError(kOut, dir + " holds a different run (" + existing.toJson().dump() +
                                    "); use the same scene, seed and flags, or another folder");
     } else {
@@ -106,6 +116,41 @@ void prepareOutputFolder(const std::string& dir, const RunInfo& info, const Fold
   fs::create_directories(fs::path(dir) / kPartsFolder, ec);
   if (ec) throw RunError("cannot create the output folder " + dir + ": " + ec.message());
   writeFileAtomic(runInfoPath(dir), info.toJson().dump(2) + "\n");
+  if (policy.sharded)
+    writeFileAtomic((fs::path(dir) / kPartsFolder / ("inputs." + policy.shardTag + ".json")).string(),
+                    info.inputs.toJson().dump(2) + "\n");
+}
+
+std::vector<std::string> shardInputProblems(const std::string& dir, const RunInfo& info) {
+  std::vector<std::string> problems;
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(dir) / kPartsFolder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.starts_with("inputs.") && name.ends_with(".json")) files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) {
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+    const std::string shard = file.filename().string().substr(7, file.filename().string().size() - 12);
+    RunInputs inputs;
+    try {
+      inputs = RunInputs::fromJson(j);
+    } catch (const nlohmann::json::exception&) {
+      problems.push_back("shard " + shard + ": " + file.string() + " is corrupt");
+      continue;
+    }
+    if (j.is_discarded()) {
+      problems.push_back("shard " + shard + ": " + file.string() + " is corrupt");
+      continue;
+    }
+    const std::vector<std::string> changes = inputChanges(info.inputs, inputs);
+    if (!changes.empty()) problems.push_back("shard " + shard + " ran with other inputs: " + text::join(changes, "; "));
+  }
+  return problems;
 }
 
 void removeStaleTemporaries(const std::string& dir) {

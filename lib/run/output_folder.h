@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "run/run_inputs.h"
 #include "writers/basic_writer.h"
 
 namespace sdg {
@@ -26,6 +27,7 @@ struct RunInfo {
   std::string cocoFile;      // "" without a COCO writer
   std::string cocoTaxonomy;
   bool contactSheet = true;
+  RunInputs inputs;  // every input file's hash and sdgbehave's version
   // No shard count: frames depend only on (scene, seed, iteration, frame),
   // so shards of different counts still write the same bytes.
 
@@ -39,12 +41,17 @@ struct FolderPolicy {
   bool overwrite = false;  // replace an earlier run's files
   bool resume = false;     // keep the frames an earlier run finished
   bool sharded = false;    // other shards of this run may write here too
+  std::string shardTag;    // this shard's name ("2-of-4"), when sharded
 };
 
 // Creates the folder or checks that this run may use it, then records
 // `info` (SceneError for a folder holding something else, exit 2).
 void prepareOutputFolder(const std::string& dir, const RunInfo& info, const FolderPolicy& policy);
 RunInfo readRunInfo(const std::string& dir);  // RunError when absent or corrupt
+// Shards that started together can each find the folder empty; every shard
+// therefore also records its own inputs (.sdgbehave/inputs.<tag>.json).
+// One line per shard whose inputs differ from run.json's, naming the files.
+std::vector<std::string> shardInputProblems(const std::string& dir, const RunInfo& info);
 // Temporary files a killed run left behind ("*.tmp-<pid>").
 void removeStaleTemporaries(const std::string& dir);
 

@@ -38,6 +38,7 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
   j["version"] = in.version;
   j["scene"] = in.scenePath;
   j["scene_hash"] = fileHash(in.scenePath);
+  j["inputs_identity"] = r.info.inputs.identity();
   j["seed"] = o.seed;
   j["frames"] = r.frames;
   j["frames_resumed"] = r.resumedFrames;

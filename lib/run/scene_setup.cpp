@@ -142,8 +142,12 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
     scriptFiles.push_back(existingDeclaredFile(sceneDir, script, "scripts: behavior script"));
     scripting::loadScript(registry, scriptFiles.back(), script.loc);
   }
-  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins"))
-    registry.loadPlugin(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"), plugin.loc);
+  std::vector<std::string> pluginFiles = request.plugins;
+  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins")) {
+    pluginFiles.push_back(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"));
+    registry.loadPlugin(pluginFiles.back(), plugin.loc);
+  }
+  for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
   // Smart assets: their scripts register before any prim is read, so that
   // the scene can attach and override their behaviors.
   AssetLibrary assetLibrary(request.assetTexts);
@@ -162,7 +166,8 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   for (std::string& file : scriptFiles)
     if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(std::move(file));
   scriptFiles = std::move(unique);
-  return LoadedScene{std::move(registry), std::move(scene), std::move(assets), std::move(scriptFiles)};
+  return LoadedScene{std::move(registry), std::move(scene),          std::move(assets),
+                     std::move(scriptFiles), assetLibrary.files(), std::move(pluginFiles)};
 }
 
 }  // namespace sdg

@@ -38,6 +38,10 @@ struct LoadedScene {
   // Every behavior script the scene loaded, its referenced assets' too
   // (absolute, in load order, each once per listing).
   std::vector<std::string> scriptFiles;
+  // Every smart-asset file the scene mounts, and every plugin library it
+  // loaded (absolute): with the above, what the run's identity hashes.
+  std::vector<std::string> mountedFiles;
+  std::vector<std::string> pluginFiles;
 };
 
 // Command-line overrides of the scene's render section (--resolution,

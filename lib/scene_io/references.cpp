@@ -302,4 +302,10 @@ void AssetLibrary::mount(const ReferenceSpec& ref, const std::string& fromDir, c
   copy(*root);
 }
 
+std::vector<std::string> AssetLibrary::files() const {
+  std::vector<std::string> out;
+  for (const auto& entry : assets_) out.push_back(entry.first);
+  return out;
+}
+
 }  // namespace sdg

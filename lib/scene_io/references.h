@@ -69,6 +69,8 @@ class AssetLibrary {
   const std::vector<std::string>& scripts() const { return scripts_; }
   // How many asset files were read (each once).
   size_t filesRead() const { return assets_.size(); }
+  // Every asset file read (absolute, normalized, sorted).
+  std::vector<std::string> files() const;
 
  private:
   struct Asset;
