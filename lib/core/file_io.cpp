@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 
 #include "core/diagnostics.h"
 
@@ -54,6 +55,21 @@ void syncDirectory(const std::string& dir) {
   int error = errno;
   ::close(fd);
   if (result != 0 && error != EINVAL) throw RunError("cannot sync the folder " + dir + ": " + std::strerror(error));
+}
+
+std::string fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  uint64_t h = 0xCBF29CE484222325ULL;
+  char block[65536];
+  while (in.read(block, sizeof block) || in.gcount() > 0)
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(block[i]);
+      h *= 0x100000001B3ULL;
+    }
+  char text[32];
+  std::snprintf(text, sizeof text, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 }  // namespace sdg

@@ -19,4 +19,8 @@ void writeFileAtomic(const std::string& path, const std::string& text, Durabilit
 // fsync of a folder, so renames in it are durable too.
 void syncDirectory(const std::string& dir);
 
+// "fnv1a64:<16 hex digits>" of the file's bytes ("" when unreadable): a
+// quick fingerprint for summaries (a run's identity uses SHA-256).
+std::string fileHash(const std::string& path);
+
 }  // namespace sdg

@@ -21,7 +21,6 @@
 #include "run/record.h"
 #include "run/renderer_bringup.h"
 #include "run/run_inputs.h"
-#include "run/run_summary.h"
 #include "run/scene_setup.h"
 #include "stage/path.h"
 #include "writers/basic_writer.h"

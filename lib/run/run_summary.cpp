@@ -6,27 +6,14 @@
 #include <fstream>
 #include <iterator>
 
+#include "core/file_io.h"
+
 namespace sdg {
 
 double peakRssMb() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return double(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
-}
-
-std::string fileHash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  uint64_t h = 0xCBF29CE484222325ULL;
-  char block[65536];
-  while (in.read(block, sizeof block) || in.gcount() > 0)
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(block[i]);
-      h *= 0x100000001B3ULL;
-    }
-  char text[32];
-  std::snprintf(text, sizeof text, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
-  return text;
 }
 
 nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {

@@ -21,7 +21,5 @@ struct RunSummaryInputs {
 nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in);
 // Peak resident memory of this process, MB.
 double peakRssMb();
-// "fnv1a64:<16 hex digits>" of the file's bytes ("" when unreadable).
-std::string fileHash(const std::string& path);
 
 }  // namespace sdg

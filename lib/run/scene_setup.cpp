@@ -150,7 +150,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
   // Smart assets: their scripts register before any prim is read, so that
   // the scene can attach and override their behaviors.
-  AssetLibrary assetLibrary(request.assetTexts);
+  AssetLibrary assetLibrary(buildAssetScene, request.assetTexts);
   for (const DeclaredFile& script : assetLibrary.preload(doc)) {
     scriptFiles.push_back(script.path);
     scripting::loadScript(registry, script.path, script.loc);

@@ -2,6 +2,7 @@
 
 #include "core/text.h"
 #include "scene_io/raw_node.h"
+#include "scene_io/yaml_events.h"
 #include "scene_io/value_reader.h"
 #include "stage/path.h"
 

@@ -51,11 +51,4 @@ inline constexpr size_t kMaxDocumentNodes = 2'000'000;    // after alias expansi
 inline constexpr int kMaxDocumentDepth = 1000;             // nesting levels, counted through aliases
 inline constexpr size_t kMaxDocumentTextBytes = kMaxSceneFileBytes;  // scalar text, after alias expansion
 
-// Parses YAML text. `file` names the source in locations; `lineOffset` and
-// `columnOffset` shift them (for snippets such as --set values). Syntax
-// errors, alias bombs and too-deep nesting throw SceneError with a location.
-RawNode parseYaml(std::string_view text, const std::string& file, int lineOffset = 0, int columnOffset = 0);
-// Reads and parses a file; a missing, unreadable or oversized file throws SceneError.
-RawNode parseYamlFile(const std::string& path);
-
 }  // namespace sdg

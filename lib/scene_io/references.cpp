@@ -20,8 +20,8 @@ struct AssetLibrary::Asset {
   bool failed = false;           // built, with problems (reported once)
 };
 
-AssetLibrary::AssetLibrary() = default;
-AssetLibrary::AssetLibrary(std::map<std::string, std::string> texts) : texts_(std::move(texts)) {}
+AssetLibrary::AssetLibrary(AssetSceneBuilder build, std::map<std::string, std::string> texts)
+    : texts_(std::move(texts)), build_(build) {}
 AssetLibrary::~AssetLibrary() = default;
 
 namespace {
@@ -211,7 +211,7 @@ const Scene* AssetLibrary::built(Asset& asset, const BehaviorCatalog& catalog, c
   }
   building_.push_back(asset.path);
   try {
-    asset.scene = std::make_unique<Scene>(buildScene(asset.doc, catalog, {}, this));
+    asset.scene = std::make_unique<Scene>(build_(asset.doc, catalog, *this));
   } catch (const SceneError& e) {
     asset.failed = true;
     for (const Diagnostic& d : e.problems()) diag.error(referencedFrom(d.loc, from), d.message);

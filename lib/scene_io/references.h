@@ -23,7 +23,8 @@
 
 #include "core/diagnostics.h"
 #include "scene_io/raw_node.h"
-#include "scene_io/scene_loader.h"
+#include "scene_io/scene.h"
+#include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
 #include "stage/stage.h"
 
@@ -41,12 +42,16 @@ struct ReferenceSpec {
 };
 std::optional<ReferenceSpec> readReferenceSpec(const RawNode& node, const std::string& what, Diagnostics& diag);
 
+class AssetLibrary;
+// Builds a referenced asset's document into a scene (the scene loader's
+// buildAssetScene), mounting the asset's own references from `assets`.
+using AssetSceneBuilder = Scene (*)(const SceneDocument& doc, const BehaviorCatalog& catalog, AssetLibrary& assets);
+
 class AssetLibrary {
  public:
-  AssetLibrary();
   // `texts` replaces what is on disk for some asset files (absolute,
   // normalized paths): the studio's edits of an asset not saved yet.
-  explicit AssetLibrary(std::map<std::string, std::string> texts);
+  explicit AssetLibrary(AssetSceneBuilder build, std::map<std::string, std::string> texts = {});
   ~AssetLibrary();
   AssetLibrary(const AssetLibrary&) = delete;
   AssetLibrary& operator=(const AssetLibrary&) = delete;
@@ -83,6 +88,7 @@ class AssetLibrary {
   std::vector<std::string> building_;                       // the chain being built, for cycles
   std::vector<std::string> scripts_;
   std::map<std::string, std::string> texts_;
+  AssetSceneBuilder build_;
 };
 
 // An asset file's key in AssetLibrary's `texts`: absolute and normalized.

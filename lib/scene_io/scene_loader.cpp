@@ -10,6 +10,7 @@
 #include "scene_io/references.h"
 #include "scene_io/scene_validate.h"
 #include "scene_io/value_reader.h"
+#include "scene_io/yaml_events.h"
 
 namespace sdg {
 namespace {
@@ -134,26 +135,11 @@ std::vector<std::string> readStringList(const RawNode& node, const std::string& 
 
 }  // namespace
 
-SceneDocument readSceneDocument(const std::string& path) { return SceneDocument{path, parseYamlFile(path)}; }
-
-SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& name) {
-  return SceneDocument{name, parseYaml(yaml, name)};
-}
-
-std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_view key) {
-  std::vector<DeclaredFile> files;
-  if (!doc.root.isMap()) return files;
-  if (const RawNode* node = doc.root.find(key); node && node->isSequence())
-    for (const RawNode& item : node->items)
-      if (item.isScalar()) files.push_back({item.scalar, item.loc});
-  return files;
-}
-
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::span<const std::string> overrides,
                  AssetLibrary* assets) {
   std::unique_ptr<AssetLibrary> ownAssets;
   if (!assets) {
-    ownAssets = std::make_unique<AssetLibrary>();
+    ownAssets = std::make_unique<AssetLibrary>(buildAssetScene);
     assets = ownAssets.get();
   }
   Diagnostics diag;
@@ -215,6 +201,10 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
 
 Scene loadScene(const std::string& path, const BehaviorCatalog& catalog, std::span<const std::string> overrides) {
   return buildScene(readSceneDocument(path), catalog, overrides);
+}
+
+Scene buildAssetScene(const SceneDocument& doc, const BehaviorCatalog& catalog, AssetLibrary& assets) {
+  return buildScene(doc, catalog, {}, &assets);
 }
 
 }  // namespace sdg

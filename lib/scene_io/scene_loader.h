@@ -8,29 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "scene_io/raw_node.h"
 #include "scene_io/scene.h"
+#include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
 
 namespace sdg {
-
-struct SceneDocument {
-  std::string path;
-  RawNode root;
-};
-
-// Reads and parses the file (syntax errors throw SceneError).
-SceneDocument readSceneDocument(const std::string& path);
-SceneDocument sceneDocumentFromText(std::string_view yaml, const std::string& name);
-
-// The `plugins:` or `scripts:` the document declares, read leniently (the full check
-// happens in buildScene): plugins must load before behaviors are checked.
-struct DeclaredFile {
-  std::string path;  // as written, relative to the scene file
-  SourceLoc loc;
-};
-// `key` is "plugins" or "scripts".
-std::vector<DeclaredFile> declaredFiles(const SceneDocument& doc, std::string_view key);
 
 class AssetLibrary;
 
@@ -39,6 +21,10 @@ class AssetLibrary;
 // made for the call when null).
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog,
                  std::span<const std::string> overrides = {}, AssetLibrary* assets = nullptr);
+
+// What an AssetLibrary builds a referenced asset's scene with: buildScene,
+// with the library itself for the asset's own references.
+Scene buildAssetScene(const SceneDocument& doc, const BehaviorCatalog& catalog, AssetLibrary& assets);
 
 Scene loadScene(const std::string& path, const BehaviorCatalog& catalog,
                 std::span<const std::string> overrides = {});

@@ -1,7 +1,11 @@
 #include "scene_io/yaml_events.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <fstream>
 #include <istream>
+#include <sstream>
 #include <streambuf>
 #include <vector>
 
@@ -214,6 +218,26 @@ RawNode buildRawNodes(std::string_view text, const TextOrigin& origin) {
     throw SceneError(builder.at(e.mark), std::string("cannot read YAML: ") + e.msg);
   }
   return builder.takeRoot();
+}
+
+RawNode parseYaml(std::string_view text, const std::string& file, int lineOffset, int columnOffset) {
+  return buildRawNodes(text, TextOrigin{file, lineOffset, columnOffset});
+}
+
+RawNode parseYamlFile(const std::string& path) {
+  SourceLoc fileLoc{path, 0, 0};
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) throw SceneError(fileLoc, "cannot open the scene file: it does not exist");
+  if (S_ISDIR(info.st_mode)) throw SceneError(fileLoc, "cannot open the scene file: it is a directory");
+  if (static_cast<size_t>(info.st_size) > kMaxSceneFileBytes)
+    throw SceneError(fileLoc, "the scene file is " + std::to_string(info.st_size) +
+                                  " bytes; scene files are limited to " + std::to_string(kMaxSceneFileBytes) +
+                                  " bytes (keep bulk data in asset files)");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(fileLoc, "cannot open the scene file: permission denied or unreadable");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parseYaml(buffer.str(), path);
 }
 
 }  // namespace sdg

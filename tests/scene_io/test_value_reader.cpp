@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "scene_io/raw_node.h"
+#include "scene_io/yaml_events.h"
 #include "scene_io/value_reader.h"
 
 using namespace sdg;
