@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
   PathTraceSettings settings;
   settings.samples = samples;
+  settings.maxBounces = int(scene.render.getUInt("max_bounces"));
   settings.threads = threads;
   PathTracer tracer(assets, settings);
   DenoiseSettings ds;

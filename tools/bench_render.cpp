@@ -124,7 +124,8 @@ int measureAll(int argc, char** argv) {
   std::fprintf(stderr, "bench_render: %s on %s (%s)\n", context->backend().c_str(), context->device().c_str(),
                context->rendererName().c_str());
   AssetResolver assets;
-  RenderSettings settings;  // 512 x 512, one sample, all passes read back
+  // 512 x 512, one sample, all passes read back: the render table's defaults.
+  RenderSettings settings = defaultRenderSettings();
   if (argc > 1) {
     // A scene file (e.g. one written by `run --save-stage`): its first camera,
     // its stage as written (behaviors and events do not run here).

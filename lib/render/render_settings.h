@@ -5,10 +5,15 @@ namespace sdg {
 
 enum class RenderMode { Raster, PathTraced };
 
+// The fields a scene sets (resolution, subframes, mode, samples, bounces,
+// denoise) have their defaults in one place, the scene's render option table
+// (scene_io/settings_specs.cpp); run/'s renderSettingsFor() and
+// defaultRenderSettings() fill them from it. The rest are the renderer's own
+// constants.
 struct RenderSettings {
-  int width = 512;
-  int height = 512;
-  int subframes = 1;  // jittered colour samples averaged per frame
+  int width = 0;
+  int height = 0;
+  int subframes = 0;  // jittered colour samples averaged per frame
   // Tone mapping: display = 1 - exp(-radiance * exposureScale), then sRGB.
   // With 0.002 a white Lambert surface lit head-on by a distant light of
   // intensity 4000 maps to about 0.92 (sRGB 246); lamps of 20,000-120,000
@@ -25,9 +30,9 @@ struct RenderSettings {
   // Colour from the rasterizer or the path tracer (labels always come from
   // the rasterizer's exact passes); the path tracer's inputs.
   RenderMode mode = RenderMode::Raster;
-  int samples = 64;     // per pixel
-  int maxBounces = 8;   // scattering events whose light is counted
-  bool denoise = false; // the edge-aware filter (render/pathtrace/denoiser.h)
+  int samples = 0;       // per pixel
+  int maxBounces = 0;    // scattering events whose light is counted
+  bool denoise = false;  // the edge-aware filter (render/pathtrace/denoiser.h)
 };
 
 }  // namespace sdg

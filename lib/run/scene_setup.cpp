@@ -38,6 +38,8 @@ RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& over
   return settings;
 }
 
+RenderSettings defaultRenderSettings() { return renderSettingsFor(Scene(), RenderOverrides{}); }
+
 std::unique_ptr<GlContext> glContextFor(const Scene& scene, const RenderOverrides& overrides) {
   return createGlContext(overrides.backend.value_or(scene.render.getString("backend")), overrides.gpu);
 }

@@ -56,6 +56,9 @@ struct RenderOverrides {
 };
 // The scene's render settings with the overrides applied.
 RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& overrides);
+// What a scene that says nothing of rendering gets: the render option
+// table's defaults (scene_io/settings_specs.cpp), the only place they are written.
+RenderSettings defaultRenderSettings();
 // The GL context for a run or a picture (RunError naming what was tried).
 std::unique_ptr<GlContext> glContextFor(const Scene& scene, const RenderOverrides& overrides);
 

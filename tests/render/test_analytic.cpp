@@ -6,6 +6,7 @@
 #include <numbers>
 #include <set>
 
+#include "run/scene_setup.h"
 #include "render/camera_math.h"
 
 using namespace sdg;
@@ -36,7 +37,7 @@ struct ShadowShot {
   int red(int x, int y) const { return int(r.frame.rgba[(size_t(y) * 100 + size_t(x)) * 4]); }
 };
 ShadowShot renderShadowScene(const std::string& yaml) {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 100;
   return {test::renderYaml(yaml, settings)};
 }
@@ -49,7 +50,7 @@ int redness(const FramePasses& f, int x, int y) {
 }  // namespace
 
 TEST_CASE("render: a plane lit head-on by a distant light has the shading formula's value", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 64;
   auto r = test::renderYaml(std::string(R"(
 version: 1
@@ -70,7 +71,7 @@ prims:
 }
 
 TEST_CASE("render: a sphere's silhouette covers its analytic area within 1%", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 256;
   // Orthographic: 10 units across (aperture in tenths of a unit), radius 3.
   auto r = test::renderYaml(R"(
@@ -88,7 +89,7 @@ prims:
 }
 
 TEST_CASE("render: distance to the image plane of a plane at a known distance", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 64;
   auto r = test::renderYaml(std::string(R"(
 version: 1
@@ -103,7 +104,7 @@ prims:
 }
 
 TEST_CASE("render: instance ids are exact on a known layout", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = 100;
   settings.height = 100;
   // Orthographic view of 10 x 10 units; two unit-size squares and background.
@@ -133,7 +134,7 @@ prims:
 }
 
 TEST_CASE("render: a world point lands on the pixel the intrinsics predict", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = 160;
   settings.height = 120;
   auto r = test::renderYaml(R"(
@@ -159,7 +160,7 @@ prims:
 }
 
 TEST_CASE("render: texture_rotate of 90 degrees rotates a texture", "[render][analytic]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 64;
   auto render = [&](float rotate) {
     return test::renderYaml(R"(
@@ -187,7 +188,7 @@ TEST_CASE("render: project_uvw maps a texture from world coordinates, the mesh's
   // Two cards side by side in one frame (the renderer switches programs
   // between them): the left one samples split.png once over its uvs, the
   // right one repeats it every world unit.
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 64;
   auto r = test::renderYaml(R"(
 version: 1
@@ -262,7 +263,7 @@ prims:
 }
 
 TEST_CASE("render: a dome light's lat-long texture shows behind the scene, its pole up", "[render][analytic][dome]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 64;
   // sky.png: top half blue, bottom half green. On a Z-up stage the map's
   // pole is +Z; the camera looks along +Y with +Z up, so the top of the
@@ -299,7 +300,7 @@ prims:
   /Sun: {type: DistantLight, inputs:intensity: 2000, rotateXYZ: [30, 20, 0]}
   /Lamp: {type: SphereLight, inputs:intensity: 50000, translate: [2, 2, 4]}
 )") + kTopCamera;
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 96;
   auto full = test::renderYaml(yaml, settings);
   static const AssetResolver assets({SDG_SOURCE_DIR "/scenes", SDG_SOURCE_DIR "/tests/data"});

@@ -10,6 +10,7 @@
 #include <functional>
 #include <numbers>
 
+#include "run/scene_setup.h"
 #include "render/raster/environment_map.h"
 #include "render/latlong.h"
 #include "test_images.h"
@@ -78,7 +79,7 @@ TEST_CASE("dome: the camera sees the map in OpenEXR's lat-long orientation, its 
   /PlusY: {type: Camera, focalLength: 50, rotateXYZ: [90, 0, 0]}
   /Up: {type: Camera, focalLength: 50, rotateXYZ: [180, 0, 0]}
 )";
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 16;
   const std::vector<FramePasses> frames = renderCameras(yaml, settings);
   REQUIRE(frames.size() == 5);
@@ -146,7 +147,7 @@ TEST_CASE("dome: one bright patch lights a diffuse plane with the analytic irrad
   /TurnedCam: {type: Camera, projection: orthographic, horizontalAperture: 10, translate: [2.5, 54.330127, 0], rotateXYZ: [90, 0, 150], clippingRange: [0.1, 100]}
   /AwayCam: {type: Camera, projection: orthographic, horizontalAperture: 10, translate: [-5, 0, 0], rotateXYZ: [90, 0, -90], clippingRange: [0.1, 100]}
 )";
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 32;
   const std::vector<FramePasses> frames = renderCameras(yaml, settings);
   const double facing = centralRadiance(frames[0], 0, settings.exposureScale);
@@ -178,7 +179,7 @@ TEST_CASE("material maps: a map with influence 1 equals the same constant; ORM p
   /Cam: {type: Camera, focalLength: 18, translate: [0, -6, 4], rotateXYZ: [60, 0, 0], clippingRange: [0.1, 100]}
 )";
   };
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 48;
   auto render = [&](const std::string& material) { return test::renderYaml(scene(material), settings).frame.rgba; };
   const auto constant = render("inputs:reflection_roughness_constant: 0.2, inputs:metallic_constant: 1.0");
@@ -213,7 +214,7 @@ TEST_CASE("material maps: a normal map tilts the shading toward the image's top,
   // Every texel's normal tilted 45 degrees toward the image's top (+Y).
   writePng(dir / "tilt_up.png", 8, 8, [](int, int) { return std::array<uint8_t, 4>{128, 218, 218, 255}; });
   const std::string d = dir.string() + "/";
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 32;
   const std::string camera =
       "  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, verticalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}\n";
@@ -256,7 +257,7 @@ TEST_CASE("material maps: an opacity cut-out shows what lies behind it, in colou
   /Sky: {type: DomeLight, inputs:intensity: 500}
   /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}
 )";
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 32;
   const auto r = test::renderYaml(yaml, settings);
   const uint32_t floorId = r.list.items[0].instanceId, cardId = r.list.items[1].instanceId;
@@ -336,7 +337,7 @@ TEST_CASE("embedded textures: a glTF's embedded base colour renders as the same 
   REQUIRE(embedded.embeddedImages.size() == 1);
   CHECK(embedded.parts.at(0).maps.baseColor.rfind("embedded:", 0) == 0);
 
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 32;
   auto render = [&](const std::string& file) {
     return test::renderYaml("version: 1\nprims:\n  /Quad: {type: Mesh, asset: " + (dir / file).string() +

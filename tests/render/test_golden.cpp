@@ -30,7 +30,7 @@ double toleranceScale() {
 void compareWithGolden(const std::string& scene, const std::string& golden) {
   LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = scene});
   RenderList list = buildRenderList(loaded.scene.stage);
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   Vec2i size = loaded.scene.render.get("resolution").get<Vec2i>();
   settings.width = size.x();
   settings.height = size.y();

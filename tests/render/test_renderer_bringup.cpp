@@ -5,6 +5,7 @@
 
 #include "core/diagnostics.h"
 #include "run/renderer_bringup.h"
+#include "run/scene_setup.h"
 
 using namespace sdg;
 
@@ -36,7 +37,7 @@ struct RestoreSharedContext {
 }  // namespace
 
 TEST_CASE("renderer bring-up: warmed up on a helper thread, it renders the same bytes here", "[render][bringup]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 80;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   RestoreSharedContext restore;
@@ -53,7 +54,7 @@ TEST_CASE("renderer bring-up: warmed up on a helper thread, it renders the same 
 }
 
 TEST_CASE("renderer bring-up: compileFor draws nothing that a later frame keeps", "[render][bringup]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 80;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   Renderer renderer(test::sharedContext(), assets(), settings);
@@ -76,13 +77,13 @@ TEST_CASE("renderer bring-up: compileFor draws nothing that a later frame keeps"
 TEST_CASE("renderer bring-up: a context that cannot be made is the caller's error", "[render][bringup]") {
   RestoreSharedContext restore;
   RendererBringUp bringUp([]() -> std::unique_ptr<GlContext> { throw RunError("no back end here"); }, assets(),
-                          RenderSettings{}, std::nullopt);
+                          defaultRenderSettings(), std::nullopt);
   CHECK_THROWS_WITH(bringUp.renderer(), "no back end here");
   CHECK_THROWS_WITH(bringUp.renderer(), "no back end here");  // and stays so
 }
 
 TEST_CASE("renderer bring-up: a warm-up frame that fails leaves the error to the frames", "[render][bringup]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 32;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   RestoreSharedContext restore;
@@ -99,7 +100,7 @@ TEST_CASE("renderer bring-up: a warm-up frame that fails leaves the error to the
 }
 
 TEST_CASE("renderer bring-up: retired in the background, while another renderer goes on drawing", "[render][bringup]") {
-  RenderSettings settings;
+  RenderSettings settings = defaultRenderSettings();
   settings.width = settings.height = 48;
   test::RenderedScene direct = test::renderYaml(kScene, settings);
   RestoreSharedContext restore;

@@ -35,9 +35,11 @@
 
 namespace sdg {
 
+// A run fills these from its RenderSettings (whose defaults are the scene's
+// render option table); the tracer itself assumes none.
 struct PathTraceSettings {
-  int samples = 64;    // per pixel
-  int maxBounces = 8;  // path length limit (Russian roulette after 3): the scattering events whose light is counted
+  int samples = 0;     // per pixel
+  int maxBounces = 0;  // path length limit (Russian roulette after 3): the scattering events whose light is counted
   int threads = 0;     // 0: hardware concurrency
 };
 

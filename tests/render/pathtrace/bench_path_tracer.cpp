@@ -27,6 +27,7 @@ TEST_CASE("path tracer benchmark: rays per second per core on bundled scenes", "
     const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
     PathTraceSettings settings;
     settings.samples = 16;
+    settings.maxBounces = 8;
     settings.threads = 1;
     PathTracer tracer(assets, settings);
     PathTracedFrame frame;

@@ -70,6 +70,7 @@ TEST_CASE("path tracer: a diffuse sphere in a uniform dome returns the BSDF's di
       "  /Sky: {type: DomeLight, inputs:intensity: 2}\n"));
   PathTraceSettings settings;
   settings.samples = 32;
+  settings.maxBounces = 8;
   const PathTracedFrame f = trace(list, 32, 32, settings);
   // A convex object in a furnace: every pixel sees one bounce, so its
   // value is L times the directional albedo at its view cosine (the view
@@ -101,6 +102,7 @@ prims:
   const RenderList list = renderListOf(yaml);
   PathTraceSettings settings;
   settings.samples = 256;
+  settings.maxBounces = 8;
   const int size = 16;
   const PathTracedFrame f = trace(list, size, size, settings);
   double rendered = 0;
@@ -201,6 +203,7 @@ TEST_CASE("path tracer: GGX metal keeps at most the light it receives (furnace, 
         "  /Sky: {type: DomeLight, inputs:intensity: 1}\n"));
     PathTraceSettings settings;
     settings.samples = 64;
+    settings.maxBounces = 8;
     const PathTracedFrame f = trace(list, 32, 32, settings);
     int pixels = 0;
     const double mean = interiorMean(f, 1, [&](size_t p) { return f.radiance[3 * p]; }, &pixels);
@@ -316,6 +319,7 @@ prims:
 )";
     PathTraceSettings settings;
     settings.samples = 64;
+    settings.maxBounces = 8;
     const PathTracedFrame f = trace(renderListOf(yaml), 16, 16, settings);
     double rendered = 0;
     for (int y = 6; y < 10; ++y)
@@ -346,6 +350,7 @@ prims:
   const int size = 16;
   PathTraceSettings settings;
   settings.samples = 4096;
+  settings.maxBounces = 8;
   const PathTracedFrame reference = trace(list, size, size, settings, 999);
   std::vector<double> logN, logError;
   // The mean squared error over 8 independent seeds at each N: one

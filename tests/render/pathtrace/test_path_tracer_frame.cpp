@@ -58,6 +58,7 @@ TEST_CASE("path tracer: the radiance is byte-identical on 1 and 3 threads, and t
   const RenderList list = renderListOf(kRoom);
   PathTraceSettings settings;
   settings.samples = 8;
+  settings.maxBounces = 8;
   settings.threads = 1;
   const PathTracedFrame one = trace(list, 40, 24, settings, 5);
   settings.threads = 3;
@@ -183,6 +184,7 @@ TEST_CASE("path tracer: the camera sees the dome map in OpenEXR's lat-long orien
                                          Vec3f(1000, 1000, 1000), Vec3f(1000, 1000, 0)};
   PathTraceSettings settings;
   settings.samples = 4;
+  settings.maxBounces = 8;
   PathTracer tracer(testAssets(), settings);
   for (size_t c = 0; c < expected.size(); ++c) {
     INFO("camera " << list.cameras[c].path);
@@ -219,6 +221,7 @@ TEST_CASE("path tracer: an opacity cut-out lets camera rays and shadow rays thro
   const uint32_t floorId = list.items[0].instanceId, cardId = list.items[1].instanceId;
   PathTraceSettings settings;
   settings.samples = 4;
+  settings.maxBounces = 8;
   const PathTracedFrame top = trace(list, 32, 32, settings);
   // The card covers pixels 8..23; its left half (x < 16) is cut out.
   CHECK(top.instance[size_t(16 * 32 + 11)] == floorId);
@@ -254,6 +257,7 @@ TEST_CASE("path tracer: a normal map tilts the shading toward the image's top, a
       "  /Cam: {type: Camera, projection: orthographic, horizontalAperture: 40, translate: [0, 0, 10], clippingRange: [0.1, 100]}\n";
   PathTraceSettings settings;
   settings.samples = 4;
+  settings.maxBounces = 8;
   // Where the image's top lies on screen, from the albedo plane.
   const PathTracedFrame look =
       trace(renderListOf("version: 1\nprims:\n  /Looks: {type: Scope}\n  /Looks/M: {type: Material, inputs:diffuse_texture: " +
