@@ -28,6 +28,8 @@ struct RenderSettings {
   int samples = 64;     // per pixel
   int maxBounces = 8;   // scattering events whose light is counted
   bool denoise = false; // the edge-aware filter (render/pathtrace/denoiser.h)
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 }  // namespace sdg

@@ -154,6 +154,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   Scene scene = buildScene(doc, registry.catalog(), request.overrides, &assetLibrary);
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
+  if (request.confineAssets) assets.confineToRoots();
   Diagnostics diag;
   checkStageFiles(scene.stage, registry.catalog(), assets, diag);
   diag.throwIfErrors();
@@ -164,5 +165,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   scriptFiles = std::move(unique);
   return LoadedScene{std::move(registry), std::move(scene), std::move(assets), std::move(scriptFiles)};
 }
+
+void reloadBehaviorScript(const std::string& path) { scripting::reloadScript(path); }
 
 }  // namespace sdg
