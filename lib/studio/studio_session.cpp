@@ -53,11 +53,36 @@ Json specJson(const AttributeSpec& spec) {
   return j;
 }
 
+// The location with every file in it named by its absolute path. The
+// loader names a smart asset below the working folder relative to it and
+// one elsewhere absolutely; the page shows one style whatever the working
+// folder. Pseudo-files ("--set[1]", a flag's name) are no files and stay.
+SourceLoc absoluteLoc(const SourceLoc& loc) {
+  SourceLoc out = loc;
+  std::error_code ec;
+  if (loc.known() && std::filesystem::is_regular_file(loc.file.str(), ec))
+    out.file = std::filesystem::absolute(loc.file.str()).lexically_normal().string();
+  if (loc.via) out.via = std::make_shared<const SourceLoc>(absoluteLoc(*loc.via));
+  return out;
+}
+
+std::string origin(const SourceLoc& loc) { return valueOrigin(absoluteLoc(loc)); }
+
+// A SceneError's problems, one a line, located with absolute paths.
+std::string problemsText(const SceneError& e) {
+  std::string messages;
+  for (Diagnostic d : e.problems()) {
+    d.loc = absoluteLoc(d.loc);
+    messages += (messages.empty() ? "" : "\n") + d.format();
+  }
+  return messages;
+}
+
 Json attributeJson(const std::string& name, const Attribute& a, const AttributeSpec* spec) {
   Json j = spec ? specJson(*spec) : Json{{"type", std::string(valueTypeName(a.value.type()))}, {"doc", a.doc}};
   j["name"] = name;
   j["value"] = valueToJson(a.value);
-  j["origin"] = valueOrigin(a.loc);
+  j["origin"] = origin(a.loc);
   return j;
 }
 
@@ -121,9 +146,7 @@ void StudioSession::checkFile() {
       reloadBehaviorScript(script);
       scriptsChanged = true;
     } catch (const SceneError& e) {
-      std::string messages;
-      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-      reloadNote_ = script + " no longer loads; the last good version keeps running:\n" + messages;
+      reloadNote_ = script + " no longer loads; the last good version keeps running:\n" + problemsText(e) + "\n";
     }
   }
   if (scriptsChanged) {
@@ -132,9 +155,8 @@ void StudioSession::checkFile() {
       runPreroll();
       reloadNote_ = "reloaded: a behavior script changed on disk";
     } catch (const SceneError& e) {
-      std::string messages;
-      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-      reloadNote_ = "the scene does not load with the changed script; the last good version keeps running:\n" + messages;
+      reloadNote_ = "the scene does not load with the changed script; the last good version keeps running:\n" +
+                    problemsText(e) + "\n";
     }
   }
   const int64_t stamp = stampOf(options_.scene.scenePath);
@@ -157,9 +179,7 @@ void StudioSession::checkFile() {
     reloadNote_ = "reloaded: the file changed on disk";
   } catch (const SceneError& e) {
     text_ = onDisk;
-    std::string messages;
-    for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-    reloadNote_ = "the file changed on disk and does not load:\n" + messages;
+    reloadNote_ = "the file changed on disk and does not load:\n" + problemsText(e) + "\n";
   }
 }
 
@@ -193,7 +213,7 @@ Json StudioSession::tree() {
     Json prim;
     prim["path"] = p.path();
     prim["type"] = std::string(p.typeInfo().name);
-    prim["origin"] = valueOrigin(p.loc());
+    prim["origin"] = origin(p.loc());
     Json attributes = Json::array();
     for (const auto& [name, a] : p.attributes())
       if (!name.starts_with("exposedVar:")) attributes.push_back(attributeJson(name, a, findSchemaAttribute(p.type(), name)));
@@ -344,9 +364,7 @@ std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited,
   try {
     return std::make_unique<LoadedScene>(loadSceneForRun(request));
   } catch (const SceneError& e) {
-    std::string messages;
-    for (const Diagnostic& d : e.problems()) messages += (messages.empty() ? "" : "\n") + d.format();
-    throw StudioError(400, messages);
+    throw StudioError(400, problemsText(e));
   }
 }
 

@@ -128,14 +128,16 @@ def mesh_edits_layout_and_conflicts(driver, binary, root, tmp):
             asset = driver.find_element(By.CSS_SELECTOR, "input[data-attribute='asset']")
             driver.execute_script("arguments[0].value = arguments[1]; arguments[0].dispatchEvent(new Event('change'))",
                                   asset, value)
-            error = wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "[data-field-error='asset']"),
-                             f"the message beside the field for {value}")
-            check(message in error.text and value in error.text, f"{value}: {error.text}")
-            row = driver.execute_script("return arguments[0].closest('.row').contains(arguments[1])", error,
-                                        driver.find_element(By.CSS_SELECTOR, "input[data-attribute='asset']"))
-            check(row, "the message is not in the field's row")
-            check(driver.find_element(By.CSS_SELECTOR, "input[data-attribute='asset']").get_property("value")
-                  == "props/crate.glb", "the field did not get its old value back")
+            shown = wait_for(lambda: driver.execute_script(
+                "const e = document.querySelector(\"[data-field-error='asset']\");"
+                "const field = document.querySelector(\"input[data-attribute='asset']\");"
+                "return e && e.textContent.includes(arguments[0]) && "
+                "[e.textContent, e.closest('.row').contains(field), field.value];", value),
+                f"the message beside the field for {value}")
+            text, same_row, field_value = shown
+            check(message in text, f"{value}: {text}")
+            check(same_row, "the message is not in the field's row")
+            check(field_value == "props/crate.glb", f"the field did not get its old value back: {field_value}")
         driver.execute_script("goTo(1)")
         wait_for(loaded, "a preview after the refused edits")
         check(driver.find_element(By.ID, "message").text == "", f"message: {driver.find_element(By.ID, 'message').text}")
@@ -159,9 +161,10 @@ def mesh_edits_layout_and_conflicts(driver, binary, root, tmp):
         # An edit meanwhile says what is possible, beside its field.
         size = driver.find_element(By.CSS_SELECTOR, "input[data-attribute='size']")
         driver.execute_script("arguments[0].value = '0.8'; arguments[0].dispatchEvent(new Event('change'))", size)
-        error = wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "[data-field-error='size']"), "the refused edit")
-        check("reload" in error.text and "overwrite" in error.text and "save or reload" not in error.text,
-              f"refused edit: {error.text}")
+        text = wait_for(lambda: driver.execute_script(
+            "const e = document.querySelector(\"[data-field-error='size']\"); return e && e.textContent"),
+            "the refused edit")
+        check("reload" in text and "overwrite" in text and "save or reload" not in text, f"refused edit: {text}")
         # Overwrite, after confirming with the diff.
         driver.find_element(By.ID, "conflictOverwrite").click()
         alert = wait_for(lambda: driver.switch_to.alert, "the overwrite confirmation")

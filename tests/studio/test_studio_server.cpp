@@ -11,6 +11,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -302,9 +303,13 @@ TEST_CASE("studio server: an edit validate would refuse is a 4xx; text and previ
   CHECK(studio.get("/api/diff").body.find("+  /World/Crate: {type: Mesh, asset: \"props/crate.obj\"") != std::string::npos);
 }
 
-TEST_CASE("studio server: origins and messages name files one way, absolute", "[studio]") {
+TEST_CASE("studio server: origins name files one way, absolute", "[studio]") {
   const fs::path cwd = fs::current_path();
   Studio studio("origins");
+  // A smart asset below the working folder, which the loader names relative to it.
+  fs::create_directories(studio.dir / "scene" / "assets");
+  writeFile(studio.dir / "scene" / "assets" / "ball.yaml", "version: 1\nprims:\n  /Ball: {type: Sphere, radius: 0.2}\n");
+  writeFile(studio.scene, std::string(kScene) + "  /World/Ball: {reference: assets/ball.yaml, translate: [1, 1, 0]}\n");
   // Started with a relative path: what it prints is absolute all the same.
   fs::current_path(studio.dir);
   StudioOptions options;
@@ -313,23 +318,37 @@ TEST_CASE("studio server: origins and messages name files one way, absolute", "[
   serverOptions.token = "t0k3n";
   StudioServer relative(options, serverOptions);
   relative.start();
-  fs::current_path(cwd);
   Reply r = exchange(relative.port(), "GET /api/tree HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(relative.port()) +
                                           "\r\nX-Studio-Token: t0k3n\r\nConnection: close\r\n\r\n");
+  fs::current_path(cwd);
   REQUIRE(r.status == 200);
   const Json tree = Json::parse(r.body);
-  size_t origins = 0;
+  // Every file an origin names ("FILE:L:C, referenced from FILE:L:C") is absolute.
+  auto absolute = [](std::string origin) {
+    CAPTURE(origin);
+    for (const std::string separator : {", referenced from ", ", from "})
+      for (size_t at; (at = origin.find(separator)) != std::string::npos;) origin.replace(at, separator.size(), "\n");
+    std::istringstream parts(origin);
+    for (std::string part; std::getline(parts, part);)
+      if (!part.starts_with("/")) return false;
+    return true;
+  };
+  std::vector<std::string> origins;
   for (const Json& prim : tree["prims"]) {
-    CHECK(prim["origin"].get<std::string>().starts_with(studio.scene.string() + ":"));
+    origins.push_back(prim["origin"]);
     std::vector<Json> values(prim["attributes"].begin(), prim["attributes"].end());
     for (const Json& b : prim["behaviors"]) values.insert(values.end(), b["variables"].begin(), b["variables"].end());
-    for (const Json& a : values) {
-      const std::string origin = a["origin"];
-      CHECK((origin == "default" || origin.starts_with(studio.scene.string() + ":")));
-      origins += origin != "default";
-    }
+    for (const Json& a : values)
+      if (a["origin"] != "default") origins.push_back(a["origin"]);
   }
-  CHECK(origins == 6);  // asset, size, intensity, interval, range:minPosition, range:maxPosition
+  // 6 prims; asset, size, intensity, radius; interval, range:minPosition, range:maxPosition.
+  CHECK(origins.size() == 13);
+  const std::string asset = (studio.dir / "scene" / "assets" / "ball.yaml").string();
+  CHECK(std::count(origins.begin(), origins.end(), asset + ":3:3, referenced from " + studio.scene.string() + ":14:28") == 1);
+  for (const std::string& origin : origins) {
+    CAPTURE(origin);
+    CHECK(absolute(origin));
+  }
 }
 
 TEST_CASE("studio server: a conflict shows its diff and offers reload or overwrite", "[studio]") {
