@@ -8,7 +8,6 @@
 #include "core/diagnostics.h"
 #include "core/log.h"
 #include "core/file_io.h"
-#include "core/diagnostics.h"
 #include "run/dataset_run.h"
 #include "run/frame_plan.h"
 #include "run/output_folder.h"
@@ -37,24 +36,9 @@ struct RunArgs {
   bool resume = false;
 };
 
-// Frames per iteration and iterations from the scene, then the flags.
-FramePlan framePlanFor(const Scene& scene, const RunArgs& args) {
-  FramePlan plan;
-  const uint32_t perIteration = scene.capture.getUInt("frames_per_iteration");
-  plan.framesPerIteration = args.frames.value_or(perIteration ? perIteration : scene.capture.getUInt("frames"));
-  plan.iterations = args.iterations.value_or(scene.capture.getUInt("iterations"));
-  if (plan.framesPerIteration && plan.iterations > kMaxRunFrames / plan.framesPerIteration)
-    throw SceneError(SourceLoc{"--iterations", 0, 0},
-                     std::to_string(plan.iterations) + " iterations x " + std::to_string(plan.framesPerIteration) +
-                         " frames is beyond the limit of 2^50 frames per run; split the dataset into several runs");
-  std::optional<uint64_t> index = args.shardIndex, count = args.shardCount;
-  if (!args.shard.empty()) {
-    if (index || count) throw SceneError(SourceLoc{"--shard", 0, 0}, "give --shard i/k or --shard-index/--shard-count, not both");
-    auto [i, k] = parseShardFlag(args.shard);
-    index = i, count = k;
-  }
-  plan.shard = resolveShard(index, count, processEnvironment);
-  return plan;
+// What the flags ask of the frame plan (run/frame_plan.h decides it).
+FramePlanFlags framePlanFlags(const RunArgs& args) {
+  return FramePlanFlags{args.frames, args.iterations, args.shard, args.shardIndex, args.shardCount};
 }
 }  // namespace
 
@@ -104,7 +88,7 @@ void addRun(CLI::App& app, int& exitCode) {
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;
-      options.plan = framePlanFor(loaded.scene, *args);
+      options.plan = framePlanFor(loaded.scene, framePlanFlags(*args), processEnvironment);
       options.resume = args->resume;
       options.seed = args->seed.value_or(loaded.scene.capture.getInt("seed"));
       options.outDir = args->out.empty() ? "out/" + std::filesystem::path(args->scene.scene).stem().string() : args->out;
@@ -141,7 +125,7 @@ void addRun(CLI::App& app, int& exitCode) {
       exitCode = kExitOk;
       return;
     }
-    FramePlan plan = framePlanFor(loaded.scene, *args);
+    FramePlan plan = framePlanFor(loaded.scene, framePlanFlags(*args), processEnvironment);
     if (plan.iterations > 1 || plan.shard.sharded() || args->resume)
       throw SceneError(SourceLoc{"--no-render", 0, 0},
                        "--no-render plays one iteration of the whole timeline; it takes no --iterations, shard or "

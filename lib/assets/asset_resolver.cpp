@@ -31,6 +31,29 @@ AssetResolver::AssetResolver(std::vector<std::string> roots, std::string isaacRo
 }
 
 std::vector<std::string> AssetResolver::candidates(const std::string& path) const {
+  std::vector<std::string> out = allCandidates(path);
+  if (confined_) std::erase_if(out, [&](const std::string& c) { return !insideRoots(c); });
+  return out;
+}
+
+bool AssetResolver::leavesRoots(const std::string& path) const {
+  if (!confined_) return false;
+  for (const std::string& c : allCandidates(path))
+    if (!insideRoots(c)) return true;
+  return false;
+}
+
+bool AssetResolver::insideRoots(const std::string& candidate) const {
+  const fs::path file = fs::absolute(candidate).lexically_normal();
+  auto inside = [&](const std::string& root) {
+    const fs::path relative = file.lexically_relative(fs::absolute(root).lexically_normal());
+    return !relative.empty() && *relative.begin() != "..";
+  };
+  if (!isaacRoot_.empty() && inside(isaacRoot_)) return true;
+  return std::any_of(roots_.begin(), roots_.end(), inside);
+}
+
+std::vector<std::string> AssetResolver::allCandidates(const std::string& path) const {
   std::vector<std::string> out;
   if (path.empty()) return out;
   fs::path p(path);

@@ -7,6 +7,11 @@
 // are tried first below the Isaac asset root, when one is configured
 // (--isaac-assets, SDGBEHAVE_ISAAC_ASSETS or the scene's isaac_assets). A
 // miss reports every place searched, each once.
+//
+// A confined resolver (the studio's) finds only files inside its roots and
+// the Isaac root, compared lexically ('..' resolved, symbolic links not
+// followed): a path that names a place outside them resolves to nothing, so
+// no file outside them is opened.
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +27,11 @@ class AssetResolver {
   // The local copy of Isaac Sim's asset pack ("" when none is configured).
   const std::string& isaacRoot() const { return isaacRoot_; }
   std::optional<std::string> resolve(const std::string& path) const;
+  void confineToRoots() { confined_ = true; }
+  bool confined() const { return confined_; }
+  // Whether a confined resolver dropped a candidate of `path` because it
+  // lies outside the roots (false for a resolver that is not confined).
+  bool leavesRoots(const std::string& path) const;
   // The same for a folder.
   std::optional<std::string> resolveFolder(const std::string& path) const;
   // The candidates resolve() tries, in order and without repeats.
@@ -32,6 +42,10 @@ class AssetResolver {
  private:
   std::vector<std::string> roots_;
   std::string isaacRoot_;
+  bool confined_ = false;
+
+  std::vector<std::string> allCandidates(const std::string& path) const;
+  bool insideRoots(const std::string& candidate) const;
 };
 
 // True for a path of Isaac Sim's asset pack, e.g. "/Isaac/Props/Box.usd".

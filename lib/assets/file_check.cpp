@@ -1,8 +1,12 @@
 #include "assets/file_check.h"
 
+#include <algorithm>
+#include <array>
 #include <atomic>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 
 #include "assets/image.h"
 #include "core/log.h"
@@ -23,6 +27,137 @@ std::string lowerExtension(const std::string& file) {
   std::string ext = fs::path(file).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+// ---- Mesh formats: what the loader (assimp) reads, told apart by the file's
+// extension and then its first bytes, so a wrong kind of file (a PNG or a
+// password file named as a mesh) is a scene error and not a failed run. One
+// entry per format: a format becomes readable with one more entry.
+
+constexpr size_t kHeadBytes = 4096;  // how much of a mesh file the check reads
+
+std::string_view skipBomAndSpace(std::string_view head) {
+  if (head.starts_with("\xEF\xBB\xBF")) head.remove_prefix(3);
+  while (!head.empty() && std::isspace(static_cast<unsigned char>(head.front()))) head.remove_prefix(1);
+  return head;
+}
+
+bool looksLikeText(std::string_view head) { return head.find('\0') == std::string_view::npos; }
+
+// The first `n` characters of a line, printable, for messages.
+std::string excerpt(std::string_view line) {
+  std::string out;
+  for (char c : line.substr(0, 40)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+  return text::quote(out);
+}
+
+// Each sniff says why `head` (the first bytes of a file of `size` bytes)
+// is not the format, or "" when it is.
+using Sniff = std::string (*)(std::string_view head, uint64_t size);
+
+std::string sniffGlb(std::string_view head, uint64_t) {
+  return head.starts_with("glTF") ? "" : "not a binary glTF: it does not start with 'glTF'";
+}
+
+std::string sniffGltf(std::string_view head, uint64_t) {
+  return looksLikeText(head) && skipBomAndSpace(head).starts_with("{") ? "" : "not a glTF (JSON) file: it does not start with '{'";
+}
+
+std::string sniffObj(std::string_view head, uint64_t size) {
+  static const std::array<std::string_view, 20> kKeywords = {"v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s",
+                                                             "mtllib", "usemtl", "cstype", "deg", "curv", "curv2",
+                                                             "surf", "parm", "end", "lod"};
+  if (!looksLikeText(head)) return "not a Wavefront OBJ: it is not text";
+  size_t lineNumber = 0;
+  while (!head.empty()) {
+    const size_t end = head.find('\n');
+    // The last line the head cuts off is not judged.
+    if (end == std::string_view::npos && size > kHeadBytes) break;
+    std::string_view line = head.substr(0, end);
+    head.remove_prefix(end == std::string_view::npos ? head.size() : end + 1);
+    ++lineNumber;
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    if (line.empty() || line.front() == '#') continue;
+    const std::string_view keyword = line.substr(0, line.find_first_of(" \t\r"));
+    if (std::find(kKeywords.begin(), kKeywords.end(), keyword) == kKeywords.end())
+      return "not a Wavefront OBJ: line " + std::to_string(lineNumber) + " starts with " + excerpt(line);
+  }
+  return "";
+}
+
+std::string sniffFbx(std::string_view head, uint64_t) {
+  if (head.starts_with("Kaydara FBX Binary")) return "";
+  // An ASCII FBX starts with '; FBX ...' comments or its header section.
+  std::string_view text = skipBomAndSpace(head);
+  if (looksLikeText(head) && (text.starts_with(";") || text.starts_with("FBXHeaderExtension"))) return "";
+  return "not an FBX: neither 'Kaydara FBX Binary' nor an ASCII FBX's '; FBX' at its start";
+}
+
+std::string sniffPly(std::string_view head, uint64_t) {
+  return head.starts_with("ply\n") || head.starts_with("ply\r\n") ? "" : "not a PLY: it does not start with 'ply'";
+}
+
+std::string sniffStl(std::string_view head, uint64_t size) {
+  // Binary: an 80-byte header, a triangle count, 50 bytes per triangle.
+  if (size >= 84 && head.size() >= 84) {
+    uint32_t triangles = 0;
+    std::memcpy(&triangles, head.data() + 80, 4);
+    if (size == 84 + 50 * uint64_t(triangles)) return "";
+  }
+  std::string_view text = skipBomAndSpace(head);
+  if (looksLikeText(head) && text.size() >= 5 && std::equal(text.begin(), text.begin() + 5, "solid", [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == b;
+      }))
+    return "";
+  return "not an STL: neither text starting with 'solid' nor a binary STL (84 + 50 bytes per triangle)";
+}
+
+std::string sniffCollada(std::string_view head, uint64_t) {
+  return looksLikeText(head) && skipBomAndSpace(head).starts_with("<") && head.find("<COLLADA") != std::string_view::npos
+             ? ""
+             : "not a COLLADA (.dae) file: no <COLLADA element at its start";
+}
+
+struct MeshFormat {
+  std::vector<std::string> extensions;  // lower case, with the dot
+  Sniff sniff;                          // nullptr: a format the loader cannot read
+  const char* refusal;                  // why not, when it cannot
+};
+
+const std::vector<MeshFormat>& meshFormats() {
+  static const std::vector<MeshFormat> kFormats = {
+      {{".obj"}, sniffObj, nullptr},
+      {{".glb"}, sniffGlb, nullptr},
+      {{".gltf"}, sniffGltf, nullptr},
+      {{".fbx"}, sniffFbx, nullptr},
+      {{".ply"}, sniffPly, nullptr},
+      {{".stl"}, sniffStl, nullptr},
+      {{".dae"}, sniffCollada, nullptr},
+      {{".usd", ".usda", ".usdc", ".usdz"}, nullptr,
+       "is a USD file, which sdgbehave cannot read; convert it to glTF, OBJ, FBX, PLY, STL or DAE (for example with "
+       "Blender) and name that file instead"},
+  };
+  return kFormats;
+}
+
+const MeshFormat* meshFormatFor(const std::string& ext) {
+  for (const MeshFormat& f : meshFormats())
+    if (std::find(f.extensions.begin(), f.extensions.end(), ext) != f.extensions.end()) return &f;
+  return nullptr;
+}
+
+// Whether the first bytes of `path` are those of the mesh format its
+// extension names.
+std::optional<std::string> meshHeaderProblem(const std::string& file, const std::string& path, const MeshFormat& format) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(kHeadBytes, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  std::error_code ec;
+  const uint64_t size = fs::file_size(path, ec);
+  const std::string why = format.sniff(head, ec ? head.size() : size);
+  if (why.empty()) return std::nullopt;
+  return "mesh " + text::quote(file) + " (" + path + "): " + why;
 }
 
 // Whether the image's header reads: any format OpenImageIO reads, within
@@ -54,6 +189,20 @@ const char* fileKindNoun(FileKind kind) {
     case FileKind::Image: return "texture";
     default: return "file";
   }
+}
+
+const std::vector<std::string>& readableExtensions(FileKind kind) {
+  static const std::vector<std::string> kMesh = [] {
+    std::vector<std::string> out;
+    for (const MeshFormat& f : meshFormats())
+      if (f.sniff) out.insert(out.end(), f.extensions.begin(), f.extensions.end());
+    return out;
+  }();
+  // What the image module reads (image.h); the header decides, not the name.
+  static const std::vector<std::string> kImage = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".exr",
+                                                  ".hdr", ".tga", ".bmp",  ".webp"};
+  static const std::vector<std::string> kNone;
+  return kind == FileKind::Mesh ? kMesh : kind == FileKind::Image ? kImage : kNone;
 }
 
 std::vector<std::string> fileEntriesOf(const Attribute& attr, const AttributeSpec& spec, const AssetResolver& resolver,
@@ -89,11 +238,19 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   const std::string noun = fileKindNoun(kind);
   if (file.find("://") != std::string::npos)
     return noun + " " + text::quote(file) + " is a URL; sdgbehave reads local files only";
-  const std::string ext = lowerExtension(file);
-  if (kind == FileKind::Mesh && ext.starts_with(".usd"))
-    return noun + " " + text::quote(file) + " is a USD file, which sdgbehave cannot read; convert it to glTF, OBJ, " +
-           "FBX, PLY, STL or DAE (for example with Blender) and name that file instead";
+  const MeshFormat* mesh = nullptr;
+  if (kind == FileKind::Mesh) {
+    mesh = meshFormatFor(lowerExtension(file));
+    if (!mesh)
+      return noun + " " + text::quote(file) + " is not a mesh format sdgbehave reads; mesh files end in " +
+             text::join(readableExtensions(FileKind::Mesh), ", ");
+    if (!mesh->sniff) return noun + " " + text::quote(file) + " " + mesh->refusal;
+  }
   std::optional<std::string> path = resolver.resolve(file);
+  if (!path && resolver.leavesRoots(file))
+    return noun + " " + text::quote(file) + " is outside the scene's folder and asset roots (" +
+           text::join(resolver.roots(), ", ") + "), where the studio opens no file; copy it below one of them or " +
+           "start the studio with --asset-root naming its folder";
   if (!path) {
     std::string why = noun + " " + text::quote(file) + " not found; " + resolver.describeSearch(file);
     if (isIsaacAssetPath(file) && resolver.isaacRoot().empty())
@@ -105,6 +262,7 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   if (!probe || probe.peek() == std::ifstream::traits_type::eof())
     return noun + " " + text::quote(file) + " (" + *path + ") cannot be read" + (probe ? ": it is empty" : "");
   if (kind == FileKind::Image) return imageProblem(file, *path);
+  if (mesh) return meshHeaderProblem(file, *path, *mesh);
   return std::nullopt;
 }
 

@@ -3,7 +3,10 @@
 // needs them: meshes and textures of prims, and the file variables of
 // behaviors (asset, asset[] and comma-separated lists, marked by their
 // spec's FileKind). Existence, readability and a format sdgbehave reads are
-// checked; nothing is decoded, so `validate` stays fast.
+// checked: a mesh by its extension and first bytes (one table entry per
+// format, see file_check.cpp), an image by its header; nothing is decoded,
+// so `validate` stays fast. With a confined resolver (the studio's), a file
+// outside the asset roots is a problem of its own and is never opened.
 //
 // Isaac Sim's own defaults (textureRandomizer's textures:csv and
 // volumeStackRandomizer's assets:csv name "/Isaac/..." files) are used only
@@ -46,6 +49,11 @@ using StageFileVisitor = std::function<void(const Prim& prim, const Attribute& a
                                             const std::string& entry, FileKind kind)>;
 void forEachStageFile(const Stage& stage, const BehaviorCatalog& catalog, const AssetResolver& resolver,
                       const StageFileVisitor& visit);
+
+// The lower-case extensions (".glb") of the files of `kind` sdgbehave reads,
+// for listings such as the studio's file suggestions; the check itself
+// goes by the bytes for images. Empty for other kinds.
+const std::vector<std::string>& readableExtensions(FileKind kind);
 
 // Every file the stage's prims and attached behaviors name; each problem is
 // reported at the attribute that names the file (or its prim).

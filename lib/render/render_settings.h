@@ -33,6 +33,8 @@ struct RenderSettings {
   int samples = 0;       // per pixel
   int maxBounces = 0;    // scattering events whose light is counted
   bool denoise = false;  // the edge-aware filter (render/pathtrace/denoiser.h)
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 }  // namespace sdg

@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "core/diagnostics.h"
+#include "scene_io/scene.h"
 
 namespace sdg {
 namespace {
@@ -23,6 +24,27 @@ std::optional<std::string> processEnvironment(const char* name) {
   const char* v = std::getenv(name);
   if (!v) return std::nullopt;
   return std::string(v);
+}
+
+std::optional<std::string> noEnvironment(const char*) { return std::nullopt; }
+
+FramePlan framePlanFor(const Scene& scene, const FramePlanFlags& flags, const EnvLookup& env) {
+  FramePlan plan;
+  const uint32_t perIteration = scene.capture.getUInt("frames_per_iteration");
+  plan.framesPerIteration = flags.frames.value_or(perIteration ? perIteration : scene.capture.getUInt("frames"));
+  plan.iterations = flags.iterations.value_or(scene.capture.getUInt("iterations"));
+  if (plan.framesPerIteration && plan.iterations > kMaxRunFrames / plan.framesPerIteration)
+    throw SceneError(at("--iterations"),
+                     std::to_string(plan.iterations) + " iterations x " + std::to_string(plan.framesPerIteration) +
+                         " frames is beyond the limit of 2^50 frames per run; split the dataset into several runs");
+  std::optional<uint64_t> index = flags.shardIndex, count = flags.shardCount;
+  if (!flags.shard.empty()) {
+    if (index || count) throw SceneError(at("--shard"), "give --shard i/k or --shard-index/--shard-count, not both");
+    auto [i, k] = parseShardFlag(flags.shard);
+    index = i, count = k;
+  }
+  plan.shard = resolveShard(index, count, env);
+  return plan;
 }
 
 std::pair<uint64_t, uint64_t> parseShardFlag(const std::string& text) {

@@ -11,6 +11,8 @@
 
 namespace sdg {
 
+struct Scene;
+
 struct ShardSpec {
   uint64_t index = 0;
   uint64_t count = 1;
@@ -41,16 +43,36 @@ struct FramePlan {
   }
 };
 
+using EnvLookup = std::function<std::optional<std::string>(const char*)>;
+
 // The shard from the flags, else from the scheduler's environment: Slurm
 // job arrays (SLURM_ARRAY_TASK_ID/_MIN/_STEP/_COUNT; unevenly spaced arrays
 // are refused), then Kubernetes Indexed Jobs (JOB_COMPLETION_INDEX, with the
 // count from --shard-count). Throws SceneError (exit 2) for inconsistent
 // input, naming the variable or flag.
-using EnvLookup = std::function<std::optional<std::string>(const char*)>;
 ShardSpec resolveShard(std::optional<uint64_t> flagIndex, std::optional<uint64_t> flagCount, const EnvLookup& env);
+
+// What a command's flags ask of the frame plan (each unset: the scene decides).
+struct FramePlanFlags {
+  std::optional<uint64_t> frames;      // --frames: frames per iteration
+  std::optional<uint64_t> iterations;  // --iterations
+  std::string shard;                   // --shard i/k ("" = none)
+  std::optional<uint64_t> shardIndex, shardCount;
+};
+
+// The one place a run's frames are decided, for `run` and the studio:
+// frames per iteration from --frames, else capture.frames_per_iteration,
+// else capture.frames; iterations from --iterations, else
+// capture.iterations; the shard from the flags, else `env` (pass
+// noEnvironment to ignore the schedulers). SceneError (exit 2) past
+// kMaxRunFrames or for inconsistent shard input.
+FramePlan framePlanFor(const Scene& scene, const FramePlanFlags& flags, const EnvLookup& env);
+
 // "i/k" as given to --shard.
 std::pair<uint64_t, uint64_t> parseShardFlag(const std::string& text);
 // getenv as an EnvLookup.
 std::optional<std::string> processEnvironment(const char* name);
+// An EnvLookup where nothing is set.
+std::optional<std::string> noEnvironment(const char* name);
 
 }  // namespace sdg

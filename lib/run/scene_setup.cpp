@@ -160,6 +160,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   Scene scene = buildScene(doc, registry.catalog(), request.overrides, &assetLibrary);
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
+  if (request.confineAssets) assets.confineToRoots();
   Diagnostics diag;
   checkStageFiles(scene.stage, registry.catalog(), assets, diag);
   diag.throwIfErrors();
@@ -171,5 +172,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   return LoadedScene{std::move(registry), std::move(scene),          std::move(assets),
                      std::move(scriptFiles), assetLibrary.files(), std::move(pluginFiles)};
 }
+
+void reloadBehaviorScript(const std::string& path) { scripting::reloadScript(path); }
 
 }  // namespace sdg

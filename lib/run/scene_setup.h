@@ -29,6 +29,9 @@ struct SceneRequest {
   std::optional<std::string> sceneText = {};
   // Smart-asset files' texts that replace theirs on disk (keys: assetKey()).
   std::map<std::string, std::string> assetTexts = {};
+  // Resolve asset files only inside the asset roots (the studio: a value
+  // typed in a page opens no file elsewhere; AssetResolver::confineToRoots).
+  bool confineAssets = false;
 };
 
 struct LoadedScene {
@@ -86,6 +89,10 @@ void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 // textures, behaviors' file lists, plugins) exists and can be read. Throws
 // SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
+// Runs a behavior script again after it changed on disk, so that scenes
+// loaded from now on get its new classes (scripting::reloadScript: a
+// SceneError says why a script no longer loads; the last good one stays).
+void reloadBehaviorScript(const std::string& path);
 // The registry of built-ins plus the given plugin libraries and behavior
 // scripts (--plugin / --script; problems located at the flag).
 BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins,

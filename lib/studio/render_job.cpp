@@ -28,8 +28,8 @@ RenderJob::~RenderJob() {
   if (waiter_.joinable()) waiter_.join();
 }
 
-void RenderJob::start(const std::string& scenePath, const std::string& text, uint64_t frames, const std::string& name,
-                      const std::vector<std::string>& extraArgs) {
+void RenderJob::start(const std::string& scenePath, const std::string& text, uint64_t frames, uint64_t total,
+                      const std::string& name, const std::vector<std::string>& extraArgs) {
   static const std::regex kName("[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}");
   if (!std::regex_match(name, kName) || name.find("..") != std::string::npos)
     throw StudioError(400, "the output name is letters, digits, '_', '-' and '.', found '" + name + "'");
@@ -71,7 +71,7 @@ void RenderJob::start(const std::string& scenePath, const std::string& text, uin
   running_ = true;
   pid_ = pid;
   exitCode_ = -1;
-  frames_ = frames;
+  frames_ = total;
   errors_.clear();
   waiter_ = std::thread([this, pid, errorsPath] {
     int status = 0;

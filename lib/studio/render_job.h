@@ -22,12 +22,14 @@ class RenderJob {
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;
 
-  // Starts a run of `text` (the scene at `scenePath`, edited) for `frames`
-  // frames into <scene folder>/studio_out/<name>; `extraArgs` are the
-  // studio's own --plugin/--script/--asset-root/--isaac-assets flags.
-  // StudioError 409 while one runs, 400 for a bad name or frame count.
-  void start(const std::string& scenePath, const std::string& text, uint64_t frames, const std::string& name,
-             const std::vector<std::string>& extraArgs);
+  // Starts a run of `text` (the scene at `scenePath`, edited) with
+  // --frames `frames` into <scene folder>/studio_out/<name>, which writes
+  // `total` frames (the frame plan's: iterations x frames); `extraArgs`
+  // are the studio's own --set/--plugin/--script/--asset-root/
+  // --isaac-assets flags and seed. StudioError 409 while one runs, 400 for
+  // a bad name or frame count.
+  void start(const std::string& scenePath, const std::string& text, uint64_t frames, uint64_t total,
+             const std::string& name, const std::vector<std::string>& extraArgs);
   nlohmann::ordered_json status();
   // The finished run's contact sheet (PNG bytes); StudioError 404 without one.
   std::string contactSheet();

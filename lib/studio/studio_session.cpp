@@ -6,11 +6,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "assets/file_check.h"
 #include "behavior/describe.h"
 #include "behavior/runtime.h"
 #include "core/file_io.h"
 #include "core/text.h"
-#include "render/render_list.h"
 #include "run/preroll.h"
 #include "scene_io/inspect.h"
 #include "scene_io/references.h"
@@ -18,11 +18,7 @@
 #include "stage/prim_types.h"
 #include "stage/stage_diff.h"
 #include "stage/value_json.h"
-#include "scripting/script_loader.h"
 #include "studio/yaml_text_edit.h"
-#include "writers/colors.h"
-#include "writers/png_encoder.h"
-#include "writers/semantics.h"
 
 namespace sdg::studio {
 namespace {
@@ -57,23 +53,52 @@ Json specJson(const AttributeSpec& spec) {
   return j;
 }
 
+// The location with every file in it named by its absolute path. The
+// loader names a smart asset below the working folder relative to it and
+// one elsewhere absolutely; the page shows one style whatever the working
+// folder. Pseudo-files ("--set[1]", a flag's name) are no files and stay.
+SourceLoc absoluteLoc(const SourceLoc& loc) {
+  SourceLoc out = loc;
+  std::error_code ec;
+  if (loc.known() && std::filesystem::is_regular_file(loc.file.str(), ec))
+    out.file = std::filesystem::absolute(loc.file.str()).lexically_normal().string();
+  if (loc.via) out.via = std::make_shared<const SourceLoc>(absoluteLoc(*loc.via));
+  return out;
+}
+
+std::string origin(const SourceLoc& loc) { return valueOrigin(absoluteLoc(loc)); }
+
+// A SceneError's problems, one a line, located with absolute paths.
+std::string problemsText(const SceneError& e) {
+  std::string messages;
+  for (Diagnostic d : e.problems()) {
+    d.loc = absoluteLoc(d.loc);
+    messages += (messages.empty() ? "" : "\n") + d.format();
+  }
+  return messages;
+}
+
 Json attributeJson(const std::string& name, const Attribute& a, const AttributeSpec* spec) {
   Json j = spec ? specJson(*spec) : Json{{"type", std::string(valueTypeName(a.value.type()))}, {"doc", a.doc}};
   j["name"] = name;
   j["value"] = valueToJson(a.value);
-  j["origin"] = valueOrigin(a.loc);
+  j["origin"] = origin(a.loc);
   return j;
 }
 
-// Blends `color` over the pixel at `i` (rgba), by `alpha` in [0, 1].
-void blend(std::vector<uint8_t>& rgba, size_t i, const std::array<uint8_t, 4>& color, float alpha) {
-  for (int c = 0; c < 3; ++c)
-    rgba[4 * i + size_t(c)] = uint8_t(float(rgba[4 * i + size_t(c)]) * (1 - alpha) + float(color[size_t(c)]) * alpha);
+// Every path the studio prints (origins, messages, the diff) is absolute:
+// the scene is read through its absolute path, and nothing outside its
+// folder and asset roots is resolved.
+StudioOptions studioOptions(StudioOptions options) {
+  options.scene.scenePath = std::filesystem::absolute(options.scene.scenePath).lexically_normal().string();
+  options.scene.confineAssets = true;
+  return options;
 }
 
 }  // namespace
 
-StudioSession::StudioSession(StudioOptions options) : options_(std::move(options)) {
+StudioSession::StudioSession(StudioOptions options)
+    : options_(studioOptions(std::move(options))), pictures_(options_.render, true) {
   diskText_ = readText(options_.scene.scenePath);
   diskStamp_ = stampOf(options_.scene.scenePath);
   load(diskText_);
@@ -118,12 +143,10 @@ void StudioSession::checkFile() {
     if (now == stamp) continue;
     stamp = now;
     try {
-      scripting::reloadScript(script);
+      reloadBehaviorScript(script);
       scriptsChanged = true;
     } catch (const SceneError& e) {
-      std::string messages;
-      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-      reloadNote_ = script + " no longer loads; the last good version keeps running:\n" + messages;
+      reloadNote_ = script + " no longer loads; the last good version keeps running:\n" + problemsText(e) + "\n";
     }
   }
   if (scriptsChanged) {
@@ -132,18 +155,21 @@ void StudioSession::checkFile() {
       runPreroll();
       reloadNote_ = "reloaded: a behavior script changed on disk";
     } catch (const SceneError& e) {
-      std::string messages;
-      for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-      reloadNote_ = "the scene does not load with the changed script; the last good version keeps running:\n" + messages;
+      reloadNote_ = "the scene does not load with the changed script; the last good version keeps running:\n" +
+                    problemsText(e) + "\n";
     }
   }
   const int64_t stamp = stampOf(options_.scene.scenePath);
   if (stamp == diskStamp_) return;
   diskStamp_ = stamp;
   std::string onDisk = readText(options_.scene.scenePath);
-  if (onDisk == diskText_) return;
+  if (onDisk == diskText_) {
+    conflict_ = false;  // changed back: nothing to decide any more
+    return;
+  }
   if (unsaved()) {
     conflict_ = true;  // edits here and there: the user decides, nothing is overwritten
+    conflictText_ = std::move(onDisk);
     return;
   }
   diskText_ = onDisk;
@@ -153,9 +179,7 @@ void StudioSession::checkFile() {
     reloadNote_ = "reloaded: the file changed on disk";
   } catch (const SceneError& e) {
     text_ = onDisk;
-    std::string messages;
-    for (const Diagnostic& d : e.problems()) messages += d.format() + "\n";
-    reloadNote_ = "the file changed on disk and does not load:\n" + messages;
+    reloadNote_ = "the file changed on disk and does not load:\n" + problemsText(e) + "\n";
   }
 }
 
@@ -166,7 +190,9 @@ Json StudioSession::state() {
   j["conflict"] = conflict_;
   j["preroll_stale"] = prerollStale_;
   j["seed"] = seed_;
-  j["frames"] = loaded_->scene.capture.getUInt("frames");
+  const FramePlan plan = framePlan(0);
+  j["frames"] = plan.framesPerIteration;
+  j["iterations"] = plan.iterations;
   Json cameras = Json::array();
   loaded_->scene.stage.traverse([&](const Prim& p) {
     if (p.type() == PrimType::Camera) cameras.push_back(p.path());
@@ -187,7 +213,7 @@ Json StudioSession::tree() {
     Json prim;
     prim["path"] = p.path();
     prim["type"] = std::string(p.typeInfo().name);
-    prim["origin"] = valueOrigin(p.loc());
+    prim["origin"] = origin(p.loc());
     Json attributes = Json::array();
     for (const auto& [name, a] : p.attributes())
       if (!name.starts_with("exposedVar:")) attributes.push_back(attributeJson(name, a, findSchemaAttribute(p.type(), name)));
@@ -338,14 +364,15 @@ std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited,
   try {
     return std::make_unique<LoadedScene>(loadSceneForRun(request));
   } catch (const SceneError& e) {
-    std::string messages;
-    for (const Diagnostic& d : e.problems()) messages += (messages.empty() ? "" : "\n") + d.format();
-    throw StudioError(400, messages);
+    throw StudioError(400, problemsText(e));
   }
 }
 
 void StudioSession::refuseDuringConflict() const {
-  if (conflict_) throw StudioError(409, "the file changed on disk while there are unsaved edits here; save or reload");
+  if (conflict_)
+    throw StudioError(409, options_.scene.scenePath + " changed on disk while there are unsaved edits here, so edits "
+                           "are refused until you reload it (dropping the edits here) or overwrite it with the edits "
+                           "here (Save, after confirming)");
 }
 
 Json StudioSession::setAttached(const std::string& prim, const std::string& behavior, bool attach) {
@@ -408,62 +435,12 @@ std::unique_ptr<Stage> StudioSession::stageAt(uint64_t frame, std::optional<Stag
   return result;
 }
 
-void StudioSession::ensureRenderer() {
-  if (!context_) context_ = glContextFor(loaded_->scene, options_.render);
-  if (renderer_ && rendererRoots_ == loaded_->assets.roots()) return;
-  renderer_.reset();
-  rendererAssets_ = loaded_->assets;
-  rendererRoots_ = loaded_->assets.roots();
-  renderer_ = std::make_unique<Renderer>(*context_, rendererAssets_, renderSettingsFor(loaded_->scene, options_.render));
-}
-
 std::vector<uint8_t> StudioSession::preview(uint64_t frame, const std::string& pass, const std::string& camera) {
-  static const std::vector<std::string> kPasses = {"rgb", "semantic", "instance", "depth", "boxes"};
-  if (std::find(kPasses.begin(), kPasses.end(), pass) == kPasses.end())
-    throw StudioError(400, "unknown pass '" + pass + "'; passes: " + text::join(kPasses, ", "));
+  const std::optional<PicturePass> picturePass = picturePassNamed(pass);
+  if (!picturePass)
+    throw StudioError(400, "unknown pass '" + pass + "'; passes: " + text::join(picturePassNames(), ", "));
   std::unique_ptr<Stage> stage = stageAt(frame, nullptr);
-  RenderList list = buildRenderList(*stage);
-  size_t index = list.cameras.size();
-  for (size_t i = 0; i < list.cameras.size(); ++i)
-    if (list.cameras[i].path == camera || (camera.empty() && i == 0)) index = i;
-  if (index == list.cameras.size()) throw StudioError(400, "no camera " + camera);
-  ensureRenderer();
-  FramePasses frameBuffers;
-  renderer_->render(list, index, frameBuffers, pass == "rgb" ? PassSelection::colourOnly() : PassSelection{});
-  std::vector<uint8_t> rgba = frameBuffers.rgba;
-  const size_t pixels = frameBuffers.pixelCount();
-  if (pass == "depth") {
-    std::vector<uint8_t> grey = colorizeDistance(frameBuffers.distanceToImagePlane);
-    for (size_t i = 0; i < pixels; ++i) rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = grey[i];
-  } else if (pass != "rgb") {
-    FrameSemantics semantics = computeSemantics(*stage, list, {"class"});
-    struct Box {
-      int x0 = INT32_MAX, y0 = INT32_MAX, x1 = -1, y1 = -1;
-    };
-    std::vector<Box> boxes(semantics.entities.size());
-    for (size_t i = 0; i < pixels; ++i) {
-      const uint32_t id = frameBuffers.instanceIds[i];
-      const uint32_t entity = id < semantics.entityOfRenderId.size() ? semantics.entityOfRenderId[id] : 0;
-      if (entity == 0) continue;
-      const SemanticEntity& e = semantics.entities[entity - 1];
-      if (pass == "semantic") blend(rgba, i, idColor(e.semanticId), 0.6f);
-      if (pass == "instance") blend(rgba, i, idColor(e.instanceId), 0.6f);
-      Box& b = boxes[entity - 1];
-      const int x = int(i % size_t(frameBuffers.width)), y = int(i / size_t(frameBuffers.width));
-      b.x0 = std::min(b.x0, x), b.y0 = std::min(b.y0, y), b.x1 = std::max(b.x1, x), b.y1 = std::max(b.y1, y);
-    }
-    if (pass == "boxes")
-      for (size_t e = 0; e < boxes.size(); ++e) {
-        const Box& b = boxes[e];
-        if (b.x1 < 0) continue;
-        const auto color = idColor(semantics.entities[e].semanticId);
-        auto paint = [&](int x, int y) { blend(rgba, size_t(y) * size_t(frameBuffers.width) + size_t(x), color, 1.0f); };
-        for (int x = b.x0; x <= b.x1; ++x) paint(x, b.y0), paint(x, b.y1);
-        for (int y = b.y0; y <= b.y1; ++y) paint(b.x0, y), paint(b.x1, y);
-      }
-  }
-  return encodePng(rgba, uint32_t(frameBuffers.width), uint32_t(frameBuffers.height), PngPixels::Rgba8,
-                   PngOptions::renderedImage());
+  return pictures_.render(*loaded_, *stage, camera, "camera", *picturePass).png;
 }
 
 Json StudioSession::record(uint64_t frame) {
@@ -478,10 +455,8 @@ Json StudioSession::record(uint64_t frame) {
 
 Json StudioSession::files(const std::string& kind) const {
   namespace fs = std::filesystem;
-  static const std::vector<std::string> kMesh = {".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae"};
-  static const std::vector<std::string> kImage = {".png"};
   if (kind != "mesh" && kind != "image") throw StudioError(400, "kind is mesh or image, found '" + kind + "'");
-  const std::vector<std::string>& extensions = kind == "mesh" ? kMesh : kImage;
+  const std::vector<std::string>& extensions = readableExtensions(kind == "mesh" ? FileKind::Mesh : FileKind::Image);
   constexpr size_t kMaxFiles = 2000;
   Json out = Json::array();
   for (const std::string& root : loaded_->assets.roots()) {
@@ -512,8 +487,17 @@ std::vector<std::string> StudioSession::runFlags() const {
   return flags;
 }
 
+FramePlan StudioSession::framePlan(uint64_t frames) const {
+  FramePlanFlags flags;
+  if (frames) flags.frames = frames;
+  return framePlanFor(loaded_->scene, flags, noEnvironment);
+}
+
 std::string StudioSession::diff() const {
-  std::string out = lineDiff(diskText_, text_, options_.scene.scenePath);
+  const std::string& scene = options_.scene.scenePath;
+  std::string out = conflict_ ? lineDiff(diskText_, conflictText_, scene, "as read", "on disk now") +
+                                    lineDiff(conflictText_, text_, scene, "on disk now", "edited")
+                              : lineDiff(diskText_, text_, scene);
   for (const auto& [key, file] : assetFiles_) out += lineDiff(file.disk, file.text, key);
   return out;
 }
@@ -523,21 +507,24 @@ Json StudioSession::reload() {
   diskStamp_ = stampOf(options_.scene.scenePath);
   assetFiles_.clear();
   conflict_ = false;
+  conflictText_.clear();
   load(diskText_);
   runPreroll();
   return Json{{"reloaded", options_.scene.scenePath}};
 }
 
-Json StudioSession::save() {
+Json StudioSession::save(bool overwrite) {
   checkFile();
-  if (conflict_) throw StudioError(409, options_.scene.scenePath + " changed on disk after it was loaded; saving "
-                                                                   "would overwrite those edits");
+  if (conflict_ && !overwrite)
+    throw StudioError(409, options_.scene.scenePath + " changed on disk after it was read; saving would overwrite "
+                           "those changes: reload it (dropping the edits here) or overwrite it (Save, after confirming)");
   // Asset files edited "in the asset" must still be what was read.
   for (const auto& [key, file] : assetFiles_)
-    if (file.text != file.disk && readText(key) != file.disk)
-      throw StudioError(409, key + " changed on disk after it was read; saving would overwrite those edits");
+    if (!overwrite && file.text != file.disk && readText(key) != file.disk)
+      throw StudioError(409, key + " changed on disk after it was read; saving would overwrite those changes: reload "
+                                   "(dropping the edits here) or overwrite it (Save, after confirming)");
   Json saved = Json::array();
-  if (text_ != diskText_ || assetFiles_.empty()) {
+  if (text_ != diskText_ || conflict_ || assetFiles_.empty()) {
     writeFileAtomic(options_.scene.scenePath, text_);
     saved.push_back(options_.scene.scenePath);
   }
@@ -549,6 +536,8 @@ Json StudioSession::save() {
     }
   diskText_ = text_;
   diskStamp_ = stampOf(options_.scene.scenePath);
+  conflict_ = false;
+  conflictText_.clear();
   return Json{{"saved", saved}};
 }
 

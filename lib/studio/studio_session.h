@@ -5,8 +5,11 @@
 // loading it like any scene; a change that only touches the timeline is
 // carried over to the stage after the pre-roll, so the preview updates
 // without stacking again (changes to event-driven behaviors mark the
-// pre-roll stale until preroll() runs). Not thread-safe: the server runs
-// every call on one thread (the one that owns the GL context and Python).
+// pre-roll stale until preroll() runs). Files are resolved only inside the
+// scene's folder and asset roots (SceneRequest::confineAssets), so a value
+// typed in the page opens nothing elsewhere. Render, writers and scripts
+// are reached through run/. Not thread-safe: the server runs every call on
+// one thread (the one that owns the GL context and Python).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -16,13 +19,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/raster/gl_context.h"
-#include "render/raster/renderer.h"
+#include "run/frame_plan.h"
+#include "run/quick_render.h"
 #include "run/scene_setup.h"
 
 namespace sdg::studio {
 
-// A request the page got wrong: the server answers 400 (409 for conflicts).
+// A request the page got wrong: the server answers 400 (409 for conflicts,
+// 404 for something missing).
 struct StudioError : std::runtime_error {
   StudioError(int status, const std::string& message) : std::runtime_error(message), status(status) {}
   int status;
@@ -39,6 +43,8 @@ class StudioSession {
   explicit StudioSession(StudioOptions options);
   ~StudioSession();
 
+  // The scene file, absolute.
+  const std::string& scenePath() const { return options_.scene.scenePath; }
   nlohmann::ordered_json state();
   // The prim tree with every prim's attributes and behaviors (each variable
   // with its type, value, default, doc, bounds and origin).
@@ -55,13 +61,20 @@ class StudioSession {
   // referenced asset brings). The pre-roll runs again.
   nlohmann::ordered_json setAttached(const std::string& prim, const std::string& behavior, bool attach);
   // The camera's picture of frame `frame` (0-based: after frame + 1 updates):
-  // pass rgb, semantic, instance, depth or boxes. PNG bytes.
+  // pass rgb, semantic, instance, boxes or depth (run/quick_render.h, the
+  // path `sdgbehave render` takes). PNG bytes.
   std::vector<uint8_t> preview(uint64_t frame, const std::string& pass, const std::string& camera);
   // What each behavior changed in that frame.
   nlohmann::ordered_json record(uint64_t frame);
   nlohmann::ordered_json preroll();
   void setSeed(int64_t seed);
+  // The unsaved changes, one section per file. During a conflict the scene
+  // file has two: what changed on disk since it was read, then what
+  // overwriting it with the edits here would change.
   std::string diff() const;
+  // The frame plan of a run with --frames `frames` (0: the scene's), as
+  // `sdgbehave run` decides it, schedulers' variables ignored.
+  FramePlan framePlan(uint64_t frames) const;
   // Files of a kind ("mesh" or "image") under the scene's asset roots, as
   // the scene would name them, for the page's asset fields.
   nlohmann::ordered_json files(const std::string& kind) const;
@@ -69,7 +82,10 @@ class StudioSession {
   // command-line flags the studio was started with (and the seed).
   const std::string& text() const { return text_; }
   std::vector<std::string> runFlags() const;
-  nlohmann::ordered_json save();
+  // Writes the edited files. During a conflict (or when an asset file
+  // edited here changed on disk) it is refused with 409, unless
+  // `overwrite`: then the edits here replace the files on disk.
+  nlohmann::ordered_json save(bool overwrite = false);
   // Drops the unsaved edits and loads the files as they are on disk (the
   // way out of a conflict).
   nlohmann::ordered_json reload();
@@ -92,10 +108,10 @@ class StudioSession {
   bool unsaved() const;
   void runPreroll();
   std::unique_ptr<Stage> stageAt(uint64_t frame, std::optional<Stage>* before);
-  void ensureRenderer();
 
   StudioOptions options_;
   std::string diskText_;  // the file as last read or saved
+  std::string conflictText_;  // during a conflict: the file as it is on disk now
   std::string text_;      // with the edits
   int64_t diskStamp_ = 0;
   std::map<std::string, int64_t> scriptStamps_;  // behavior scripts, watched like the scene
@@ -110,10 +126,7 @@ class StudioSession {
   bool prerollStale_ = false;
   bool conflict_ = false;
   std::string reloadNote_;
-  std::unique_ptr<GlContext> context_;
-  std::unique_ptr<Renderer> renderer_;
-  std::vector<std::string> rendererRoots_;
-  AssetResolver rendererAssets_;
+  PictureRenderer pictures_;
 };
 
 }  // namespace sdg::studio

@@ -265,7 +265,8 @@ std::string yamlFlow(const std::string& json) {
   return emit(j);
 }
 
-std::string lineDiff(const std::string& before, const std::string& after, const std::string& name) {
+std::string lineDiff(const std::string& before, const std::string& after, const std::string& name,
+                     const std::string& beforeLabel, const std::string& afterLabel) {
   if (before == after) return {};
   auto split = [](const std::string& s) {
     std::vector<std::string> lines;
@@ -290,7 +291,7 @@ std::string lineDiff(const std::string& before, const std::string& after, const 
     else if (i < a.size() && (j == b.size() || lcs[i + 1][j] >= lcs[i][j + 1])) ops.push_back({'-', a[i++]});
     else ops.push_back({'+', b[j++]});
   }
-  std::string out = "--- " + name + " (on disk)\n+++ " + name + " (edited)\n";
+  std::string out = "--- " + name + " (" + beforeLabel + ")\n+++ " + name + " (" + afterLabel + ")\n";
   constexpr size_t kContext = 2;
   for (size_t k = 0; k < ops.size(); ++k) {
     bool near = false;

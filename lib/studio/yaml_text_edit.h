@@ -32,7 +32,9 @@ std::string removeTextKey(const std::string& text, const std::string& prim, cons
 // double-quoted strings, [a, b] lists.
 std::string yamlFlow(const std::string& json);
 
-// A unified diff of two texts, line by line, with 2 lines of context.
-std::string lineDiff(const std::string& before, const std::string& after, const std::string& name);
+// A unified diff of two texts, line by line, with 2 lines of context,
+// headed `--- NAME (BEFORE)` and `+++ NAME (AFTER)`.
+std::string lineDiff(const std::string& before, const std::string& after, const std::string& name,
+                     const std::string& beforeLabel = "on disk", const std::string& afterLabel = "edited");
 
 }  // namespace sdg::studio

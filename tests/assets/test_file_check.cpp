@@ -113,3 +113,79 @@ TEST_CASE("file entries: Isaac defaults nobody wrote are left out without a root
     CHECK(fileEntriesOf(list, arraySpec, AssetResolver({"."}), "/P.x") == std::vector<std::string>{"a.png", "b.png"});
   }
 }
+
+TEST_CASE("file problems: a mesh is a file of a format the loader reads, by extension and first bytes", "[assets]") {
+  fs::path dir = scratchFolder("meshes");
+  const std::string meshes = SDG_SOURCE_DIR "/tests/data/meshes/";
+  for (const char* name : {"crate.obj", "crate.glb", "crate.gltf", "crate.fbx", "crate.ply", "crate.stl", "crate.dae"})
+    fs::copy_file(meshes + name, dir / name);
+  // A binary STL: 80-byte header (that may itself say "solid"), count, 50 bytes a triangle.
+  std::string stl(84 + 50, '\0');
+  stl.replace(0, 5, "solid");
+  stl[80] = 1;
+  writeFile(dir / "binary.stl", stl);
+  writeFile(dir / "binary_fbx.fbx", std::string("Kaydara FBX Binary  \0\x1a\0", 23));
+  fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "picture.png");
+  fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "picture.glb");
+  writeFile(dir / "accounts", "root:x:0:0:root:/root:/bin/bash\n");
+  writeFile(dir / "accounts.obj", "# a comment\nv 0 0 0\nroot:x:0:0:root:/root:/bin/bash\n");
+  writeFile(dir / "page.gltf", "<html></html>");
+  writeFile(dir / "page.dae", "<?xml version=\"1.0\"?>\n<html></html>");
+  writeFile(dir / "odd.stl", std::string(100, 'x'));
+  writeFile(dir / "odd.ply", "PLY?\n");
+  writeFile(dir / "odd.fbx", "binary junk\x01\x02");
+  AssetResolver r({dir.string()});
+  for (const char* fine : {"crate.obj", "crate.glb", "crate.gltf", "crate.fbx", "crate.ply", "crate.stl", "crate.dae",
+                           "binary.stl", "binary_fbx.fbx", "crate.glb#crate"}) {
+    CAPTURE(fine);
+    CHECK_FALSE(fileProblem(fine, FileKind::Mesh, r));
+  }
+  auto problem = [&](const char* entry) {
+    std::optional<std::string> p = fileProblem(entry, FileKind::Mesh, r);
+    return p ? *p : std::string("(none)");
+  };
+  // A wrong extension is refused without opening the file.
+  CHECK(problem("picture.png") == "mesh 'picture.png' is not a mesh format sdgbehave reads; mesh files end in .obj, "
+                                  ".glb, .gltf, .fbx, .ply, .stl, .dae");
+  CHECK(problem("accounts").starts_with("mesh 'accounts' is not a mesh format sdgbehave reads"));
+  CHECK(problem("/etc/passwd").starts_with("mesh '/etc/passwd' is not a mesh format sdgbehave reads"));
+  // The right extension on the wrong bytes.
+  auto at = [&](const char* name) { return "(" + (dir / name).string() + "): "; };
+  CHECK(problem("picture.glb") == "mesh 'picture.glb' " + at("picture.glb") + "not a binary glTF: it does not start with 'glTF'");
+  CHECK(problem("accounts.obj") ==
+        "mesh 'accounts.obj' " + at("accounts.obj") + "not a Wavefront OBJ: line 3 starts with 'root:x:0:0:root:/root:/bin/bash'");
+  CHECK(problem("page.gltf").ends_with("not a glTF (JSON) file: it does not start with '{'"));
+  CHECK(problem("page.dae").ends_with("not a COLLADA (.dae) file: no <COLLADA element at its start"));
+  CHECK(problem("odd.stl").ends_with("not an STL: neither text starting with 'solid' nor a binary STL (84 + 50 bytes per triangle)"));
+  CHECK(problem("odd.ply").ends_with("not a PLY: it does not start with 'ply'"));
+  CHECK(problem("odd.fbx").ends_with("not an FBX: neither 'Kaydara FBX Binary' nor an ASCII FBX's '; FBX' at its start"));
+  CHECK(readableExtensions(FileKind::Mesh) ==
+        std::vector<std::string>{".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae"});
+}
+
+TEST_CASE("file problems: a confined resolver opens nothing outside its roots", "[assets]") {
+  fs::path dir = scratchFolder("confined");
+  writeFile(dir / "scene" / "props" / "crate.glb", "glTF");
+  writeFile(dir / "library" / "crate.glb", "glTF");
+  writeFile(dir / "outside" / "crate.glb", "glTF");
+  AssetResolver open({(dir / "scene").string(), (dir / "library").string()});
+  AssetResolver confined = open;
+  confined.confineToRoots();
+  const std::string outside = (dir / "outside" / "crate.glb").string();
+  for (const std::string& entry : {std::string("../outside/crate.glb"), outside}) {
+    CAPTURE(entry);
+    CHECK_FALSE(fileProblem(entry, FileKind::Mesh, open));
+    CHECK_FALSE(confined.resolve(entry));
+    CHECK(confined.leavesRoots(entry));
+    CHECK(fileProblem(entry, FileKind::Mesh, confined)->starts_with(
+        "mesh '" + entry + "' is outside the scene's folder and asset roots (" + (dir / "scene").string() + ", " +
+        (dir / "library").string() + "), where the studio opens no file"));
+  }
+  // Inside any root, through '..' or not, is fine.
+  for (const char* entry : {"props/crate.glb", "crate.glb", "props/../props/crate.glb", "../library/crate.glb"}) {
+    CAPTURE(entry);
+    CHECK_FALSE(fileProblem(entry, FileKind::Mesh, confined));
+  }
+  CHECK_FALSE(open.leavesRoots("../outside/crate.glb"));
+  CHECK(fileProblem("missing.glb", FileKind::Mesh, confined)->find("not found") != std::string::npos);
+}
