@@ -8,13 +8,13 @@
 #include <pybind11/stl.h>
 
 #include "assets/asset_resolver.h"
-#include "behaviors/look_at_math.h"
-#include "behaviors/scene_utils.h"
+#include "behavior/behavior_prims.h"
 #include "core/log.h"
 #include "core/text.h"
 #include "scripting/python_host.h"
 #include "scripting/script_context.h"
 #include "scripting/value_convert.h"
+#include "stage/look_at.h"
 #include "stage/path.h"
 #include "stage/prim_types.h"
 #include "stage/xform_edit.h"
