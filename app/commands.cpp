@@ -42,13 +42,22 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
       ->type_name("DIR");
 }
 
+void addHookTimeoutArg(CLI::App& cmd, SceneArgs& args) {
+  cmd.add_option("--hook-timeout", args.hookTimeout,
+                 "Seconds one call into a behavior script may take before the run stops with an error naming the "
+                 "prim, behavior, hook, frame and script line; 0: no limit (overrides run.hook_timeout, default 60)")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("SECONDS");
+}
+
 SceneRequest sceneRequest(const SceneArgs& args) {
   return SceneRequest{.scenePath = args.scene,
                       .overrides = args.overrides,
                       .plugins = args.plugins,
                       .scripts = args.scripts,
                       .assetRoots = args.assetRoots,
-                      .isaacAssets = args.isaacAssets};
+                      .isaacAssets = args.isaacAssets,
+                      .hookTimeout = args.hookTimeout};
 }
 
 void addImageArgs(CLI::App& cmd, ImageArgs& args) {

@@ -15,7 +15,8 @@ class Misbehaves(sdgbehave.IntervalBehavior):
     BEHAVIOR_NS = "misbehaves"
     VARIABLES_TO_EXPOSE = [
         {"attr_name": "mode", "attr_type": "token", "default_value": "none",
-         "allowed": ["none", "loop", "swallow", "native", "sleep", "sys_exit", "os_exit", "callback_loop"],
+         "allowed": ["none", "loop", "swallow", "catch", "native", "sleep", "sys_exit", "os_exit",
+                     "callback_loop"],
          "doc": "What apply() does when the frame comes."},
         {"attr_name": "atFrame", "attr_type": "int", "default_value": 2, "doc": "The frame it happens on."},
     ]
@@ -45,6 +46,12 @@ class Misbehaves(sdgbehave.IntervalBehavior):
                         pass
                 except BaseException:
                     pass
+        elif self.mode == "catch":
+            try:
+                while True:  # catches the watchdog's interruption, then returns as if nothing happened
+                    pass
+            except BaseException:
+                return
         elif self.mode == "native":
             sum(itertools.repeat(1))  # a C loop that holds the interpreter
         elif self.mode == "sleep":
