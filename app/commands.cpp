@@ -214,8 +214,10 @@ void addDescribe(CLI::App& app, int& exitCode) {
       std::string text = json ? describeBehaviorsJson(registry, *name) : describeBehavior(registry, *name);
       if (text.empty()) {
         std::vector<std::string> names = registry.catalog().names();
+        std::string suggestion = text::didYouMean(*name, names);
         throw SceneError(SourceLoc{}, "unknown behavior " + text::quote(*name) + "; known behaviors: " +
-                                          text::join(names, ", ") + text::didYouMean(*name, names));
+                                          text::join(names, ", ") +
+                                          (suggestion.empty() ? std::string(text::kScriptNotLoadedHint) : suggestion));
       }
       std::fputs(text.c_str(), stdout);
     }
