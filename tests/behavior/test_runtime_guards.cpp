@@ -103,24 +103,21 @@ TEST_CASE("runtime: run_activity names the prim, behavior, hook and frame", "[be
     CHECK(run.seen[3] == "/World: ticker.on_update() at frame 1");
     CHECK(run.seen.back() == "/World: ticker.on_stop() after frame 1");
   }
-  SECTION("an iteration that says where its frames start") {
-    BehaviorContext context;
-    context.iteration = 2;
-    context.firstFrame = 10;
-    Run run(context);
-    run.runtime->init();
-    run.runtime->play();
-    run.runtime->update();
-    CHECK(run.seen[1] == "/World: ticker.on_update() at frame 10");
-  }
-  SECTION("an iteration that does not") {
-    BehaviorContext context;
-    context.iteration = 2;
-    Run run(context);
-    run.runtime->init();
-    run.runtime->play();
-    run.runtime->update();
-    CHECK(run.seen[1] == "/World: ticker.on_update() at frame 0 of iteration 2");
+  SECTION("iterations after the first") {
+    // What the first update of iteration 2 says, with and without the
+    // dataset number of the iteration's first frame.
+    auto firstUpdate = [](std::optional<uint64_t> firstFrame) {
+      BehaviorContext context;
+      context.iteration = 2;
+      context.firstFrame = firstFrame;
+      Run run(context);
+      run.runtime->init();
+      run.runtime->play();
+      run.runtime->update();
+      return run.seen[1];
+    };
+    CHECK(firstUpdate(10) == "/World: ticker.on_update() at frame 10");
+    CHECK(firstUpdate(std::nullopt) == "/World: ticker.on_update() at frame 0 of iteration 2");
   }
   SECTION("nested scopes restore the outer one") {
     activity::HookScope outer("/A", "b", "on_update");
