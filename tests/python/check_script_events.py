@@ -38,7 +38,7 @@ def main():
     if changes != expected:
         print("record:\n" + "\n".join(map(str, changes)) + "\nexpected:\n" + "\n".join(map(str, expected)))
         return 1
-    result = subprocess.run([binary, "run", scene, "--no-render", "--frames", "10000"],
+    result = subprocess.run([binary, "run", scene, "--no-render", "--frames", "10000", "-v"],
                             capture_output=True, text=True, timeout=300)
     if result.returncode != 0:
         print(f"exit {result.returncode}:\n{result.stderr}")

@@ -1,6 +1,6 @@
 """Scripts that talk through events: one answers the scene's pre-roll, one
 publishes on every apply, one listens and writes what it heard. On stop,
-the pinger logs the last current_time it saw and the listener how many
+the pinger logs (debug) the last current_time it saw and the listener how many
 pings it heard (the last one is delivered when the timeline stops)."""
 import sdgbehave
 
@@ -40,7 +40,7 @@ class Pinger(sdgbehave.IntervalBehavior):
         super().on_update(current_time, delta_time)
 
     def on_stop(self):
-        self.log.info(f"sent {self.sent} pings; the last current_time was {self.last_time!r}")
+        self.log.debug(f"sent {self.sent} pings; the last current_time was {self.last_time!r}")
         super().on_stop()
 
 
@@ -58,4 +58,4 @@ class Listener(sdgbehave.Behavior):
         self.prim.set_attribute("user:lastPing", int(payload["n"]), type="int")
 
     def on_stop(self):
-        self.log.info(f"heard {len(self.heard)} pings, the last {self.heard[-1] if self.heard else None}")
+        self.log.debug(f"heard {len(self.heard)} pings, the last {self.heard[-1] if self.heard else None}")
