@@ -49,13 +49,13 @@ Clock::duration seconds(double s) { return std::chrono::duration_cast<Clock::dur
 Clock::duration gracePeriod(double timeout) { return seconds(std::clamp(timeout, 1.0, 5.0)); }
 
 // The call did not unwind: say where it is and end the process.
-[[noreturn]] void giveUp(const std::string& script, double timeout) {
+[[noreturn]] void giveUp(const std::string& script) {
   activity::Snapshot now = activity::current();
   std::optional<SourceLoc> line = runningScriptLine();
   std::string where = now.text().empty() ? "a script call" : now.text();
-  log::error((line ? line->str() : script) + ": " + where + " did not return within " + text::formatNumber(timeout) +
-             " s (--hook-timeout, run.hook_timeout) and did not stop when interrupted (a loop in native code, or "
-             "the script caught the interruption); sdgbehave exits");
+  log::error((line ? line->str() : script) + ": " + where + " " + timeoutText() +
+             " and did not stop when interrupted (a loop in native code, or the script caught the interruption); "
+             "sdgbehave exits");
   _exit(1);
 }
 
@@ -87,9 +87,8 @@ void watchdogLoop() {
       continue;
     }
     const std::string script = w.script ? *w.script : std::string("a script");
-    const double timeout = w.timeout;
     lock.unlock();
-    giveUp(script, timeout);
+    giveUp(script);
   }
 }
 
