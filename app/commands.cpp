@@ -42,13 +42,22 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
       ->type_name("DIR");
 }
 
+void addHookTimeoutArg(CLI::App& cmd, SceneArgs& args) {
+  cmd.add_option("--hook-timeout", args.hookTimeout,
+                 "Seconds one call into a behavior script may take before the run stops with an error naming the "
+                 "prim, behavior, hook, frame and script line; 0: no limit (overrides run.hook_timeout, default 60)")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("SECONDS");
+}
+
 SceneRequest sceneRequest(const SceneArgs& args) {
   return SceneRequest{.scenePath = args.scene,
                       .overrides = args.overrides,
                       .plugins = args.plugins,
                       .scripts = args.scripts,
                       .assetRoots = args.assetRoots,
-                      .isaacAssets = args.isaacAssets};
+                      .isaacAssets = args.isaacAssets,
+                      .hookTimeout = args.hookTimeout};
 }
 
 void addImageArgs(CLI::App& cmd, ImageArgs& args) {
@@ -205,8 +214,10 @@ void addDescribe(CLI::App& app, int& exitCode) {
       std::string text = json ? describeBehaviorsJson(registry, *name) : describeBehavior(registry, *name);
       if (text.empty()) {
         std::vector<std::string> names = registry.catalog().names();
+        std::string suggestion = text::didYouMean(*name, names);
         throw SceneError(SourceLoc{}, "unknown behavior " + text::quote(*name) + "; known behaviors: " +
-                                          text::join(names, ", ") + text::didYouMean(*name, names));
+                                          text::join(names, ", ") +
+                                          (suggestion.empty() ? std::string(text::kScriptNotLoadedHint) : suggestion));
       }
       std::fputs(text.c_str(), stdout);
     }

@@ -23,6 +23,7 @@ struct SceneArgs {
   std::vector<std::string> scripts;
   std::vector<std::string> assetRoots;
   std::string isaacAssets;
+  std::optional<double> hookTimeout;  // --hook-timeout (run only)
 };
 // What the library needs to load the scene the arguments name.
 SceneRequest sceneRequest(const SceneArgs& args);
@@ -33,9 +34,11 @@ std::string versionText();
 // "640x480" -> (640, 480); anything else is a usage error (exit 2).
 std::pair<int, int> parseResolution(const std::string& text);
 
-// SCENE, --set, --plugin, --asset-root and --isaac-assets, shared by every
-// scene command.
+// SCENE, --set, --plugin, --script, --asset-root and --isaac-assets, shared
+// by every scene command.
 void addSceneArgs(CLI::App& cmd, SceneArgs& args);
+// --hook-timeout, for the commands that run behaviors.
+void addHookTimeoutArg(CLI::App& cmd, SceneArgs& args);
 
 // --resolution, --subframes, --backend and --gpu, shared by run and render.
 struct ImageArgs {

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "stop_signals.h"
 #include "core/diagnostics.h"
 #include "core/log.h"
 
@@ -71,10 +72,12 @@ int main(int argc, char** argv) {
   cli::addNewBehavior(app, exitCode);
   cli::addStudio(app, exitCode);
 
-  // Logging must be configured before subcommand callbacks run.
+  // Logging must be configured before subcommand callbacks run; so must the
+  // stop signals (the studio waits for them itself).
   app.parse_complete_callback([&] {
     log::configure(quiet ? log::Level::Error : verbose ? log::Level::Debug : log::Level::Info,
                    logFormat == "json" ? log::Format::Json : log::Format::Text);
+    if (!app.got_subcommand("studio")) cli::installStopSignalHandlers();
   });
 
   try {

@@ -46,6 +46,7 @@ void addRun(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* cmd = app.add_subcommand("run", "Run a scene: pre-roll events, then play the timeline frame by frame");
   addSceneArgs(*cmd, args->scene);
+  addHookTimeoutArg(*cmd, args->scene);
   cmd->add_option("--frames", args->frames, "Frames to capture (overrides capture.frames)")->type_name("N");
   cmd->add_option("--seed", args->seed, "Run seed (overrides capture.seed)")->type_name("S");
   cmd->add_option("-o,--out", args->out, "Output folder (default: out/<scene name>)")->type_name("DIR");

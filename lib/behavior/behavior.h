@@ -5,6 +5,7 @@
 // creates under /Behaviors); it never renders and never sees writers.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,9 @@ struct BehaviorContext {
   RunHooks hooks;
   int64_t runSeed = 0;
   uint64_t iteration = 0;
+  // The dataset frame number of the iteration's first frame, for messages
+  // that name a frame (unset: frames are counted within the iteration).
+  std::optional<uint64_t> firstFrame;
 };
 
 class Behavior {

@@ -2,12 +2,17 @@
 // Runs the behaviors of a stage: one instance per (prim, attached behavior),
 // in stage pre-order and, per prim, in the order the scene lists them. Each
 // update first delivers queued events, then (while playing) calls onUpdate.
+// Stopping delivers what is still queued first (the events published in
+// the last update), so no event is lost at the end of a run. Every hook
+// call is recorded in run_activity for messages about a stuck or
+// interrupted run.
 #include <memory>
 #include <vector>
 
 #include "behavior/behavior.h"
 #include "behavior/event_bus.h"
 #include "behavior/registry.h"
+#include "behavior/run_activity.h"
 #include "behavior/timeline.h"
 
 namespace sdg {
@@ -23,6 +28,8 @@ class BehaviorRuntime {
   void init();
   void play();
   void pause();
+  // Delivers the events still queued (the timeline still playing), then
+  // onStop in reverse order.
   void stop();
   // One app update: events, then onUpdate(time, dt) while playing.
   void update();
@@ -42,6 +49,13 @@ class BehaviorRuntime {
   Timeline timeline_;
   std::vector<std::unique_ptr<Behavior>> behaviors_;
   uint64_t updates_ = 0;
+  uint64_t prerollUpdates_ = 0;
+
+  // onStop in reverse order, without delivering queued events (a failed
+  // run's clean-up must not run more script code than it has to).
+  void stopHooks();
+  // The frame the timeline's step `step` (0-based) renders, for messages.
+  void notePhase(activity::Phase phase, uint64_t step) const;
   bool destroyed_ = false;
 };
 

@@ -17,13 +17,13 @@ bool Timeline::pause() {
 bool Timeline::stop() {
   if (state_ == State::Stopped) return false;
   state_ = State::Stopped;
-  time_ = 0.0;
+  steps_ = 0;
   return true;
 }
 
 double Timeline::advance() {
   if (state_ != State::Playing) return 0.0;
-  time_ += dt_;
+  ++steps_;
   return dt_;
 }
 

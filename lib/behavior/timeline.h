@@ -1,17 +1,23 @@
 #pragma once
 // The timeline: stopped, playing or paused; each update advances the time by
-// 1 / timeCodesPerSecond while playing.
+// 1 / timeCodesPerSecond while playing. The time is the number of steps
+// since play divided by the rate, never a running sum of steps, so it does
+// not drift: step 10000 at 60 per second is exactly 10000 / 60.
+#include <cstdint>
+
 namespace sdg {
 
 class Timeline {
  public:
   enum class State { Stopped, Playing, Paused };
 
-  explicit Timeline(double timeCodesPerSecond = 60.0) : dt_(1.0 / timeCodesPerSecond) {}
+  explicit Timeline(double timeCodesPerSecond = 60.0) : rate_(timeCodesPerSecond), dt_(1.0 / timeCodesPerSecond) {}
   State state() const { return state_; }
   bool playing() const { return state_ == State::Playing; }
-  double time() const { return time_; }
+  double time() const { return double(steps_) / rate_; }
   double stepSize() const { return dt_; }
+  // Steps taken since the timeline last started playing from a stop.
+  uint64_t steps() const { return steps_; }
 
   // Each returns true when the state changed (the hooks must run).
   bool play();
@@ -23,7 +29,8 @@ class Timeline {
 
  private:
   State state_ = State::Stopped;
-  double time_ = 0.0;
+  uint64_t steps_ = 0;
+  double rate_;
   double dt_;
 };
 

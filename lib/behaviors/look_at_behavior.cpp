@@ -13,7 +13,7 @@
 // there is none, removed on stop). sdgbehave compensates the parent's world
 // rotation so the aim is exact under rotated parents (Isaac Sim writes the
 // world rotation into the local op). A target straight above or below uses a
-// substitute up axis (see look_at_math.h). An invalid targetPrimPath warns
+// substitute up axis (see stage/look_at.h). An invalid targetPrimPath warns
 // with the path and falls back to targetLocation.
 //
 // Example:
@@ -23,9 +23,9 @@
 // Events: none (timeline driven).
 #include "behavior/interval_behavior.h"
 #include "behaviors/builtin_behaviors.h"
-#include "behaviors/look_at_math.h"
 #include "behaviors/rotation_ops.h"
 #include "behaviors/spec_helpers.h"
+#include "stage/look_at.h"
 #include "stage/xform_edit.h"
 
 namespace sdg {

@@ -32,9 +32,9 @@
 
 #include "assets/asset_resolver.h"
 #include "assets/file_check.h"
+#include "behavior/behavior_prims.h"
 #include "behavior/interval_behavior.h"
 #include "behaviors/builtin_behaviors.h"
-#include "behaviors/scene_utils.h"
 #include "behaviors/spec_helpers.h"
 #include "core/diagnostics.h"
 #include "core/log.h"

@@ -2,38 +2,54 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 
 namespace sdg::text {
 
-static size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      size_t above = row[j];
-      size_t cost = (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                     std::tolower(static_cast<unsigned char>(b[j - 1])))
-                        ? 0
-                        : 1;
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
+namespace {
+
+bool sameLetter(char a, char b) {
+  return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
 }
+
+// Edits (insert, delete, substitute, swap two neighbours) from a to b,
+// ignoring case: a swap is one typo, as people make them.
+size_t typoDistance(std::string_view a, std::string_view b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (sameLetter(a[i - 1], b[j - 1]) ? 0 : 1)});
+      if (i > 1 && j > 1 && sameLetter(a[i - 1], b[j - 2]) && sameLetter(a[i - 2], b[j - 1]))
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+}  // namespace
 
 std::string closestMatch(std::string_view word, std::span<const std::string> candidates) {
   // Long keys are compared only when short enough; a 1 MB typo suggests nothing.
   if (word.size() > 256) return {};
   std::string best;
-  size_t bestDistance = std::max<size_t>(2, word.size() / 3) + 1;
+  size_t bestDistance = SIZE_MAX;
   for (const std::string& c : candidates) {
-    size_t d = editDistance(word, c);
-    if (d < bestDistance) {
-      bestDistance = d;
+    // Judge the names after a namespace they share: `exposedVar:ns:nosuchvar`
+    // is not a typo of `exposedVar:ns:interval` for sharing `exposedVar:ns:`.
+    std::string_view w = word, k = c;
+    size_t shared = 0;
+    while (shared < w.size() && shared < k.size() && w[shared] == k[shared]) ++shared;
+    const size_t colon = w.substr(0, shared).rfind(':');
+    if (colon != std::string_view::npos) w.remove_prefix(colon + 1), k.remove_prefix(colon + 1);
+    const size_t distance = typoDistance(w, k);
+    // About one typo per three letters (at least two), and never a whole
+    // different word, however short.
+    const bool close = distance <= std::max<size_t>(2, w.size() / 3) && distance < std::max(w.size(), k.size());
+    if (close && distance < bestDistance) {
+      bestDistance = distance;
       best = c;
     }
   }

@@ -12,6 +12,11 @@ namespace sdg::text {
 std::string closestMatch(std::string_view word, std::span<const std::string> candidates);
 // " (did you mean 'x'?)" or "".
 std::string didYouMean(std::string_view word, std::span<const std::string> candidates);
+// What an unknown behavior name says when no known name is close: it may
+// be defined by a script (or plugin) that is not loaded.
+inline constexpr std::string_view kScriptNotLoadedHint =
+    "; a behavior defined in a script or plugin needs it loaded (the scene's scripts: or plugins:, or --script "
+    "FILE.py / --plugin LIB)";
 std::string join(std::span<const std::string> items, std::string_view separator);
 // Shortest decimal text that reads back to exactly the same double.
 std::string formatDouble(double value);

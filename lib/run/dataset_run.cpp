@@ -308,6 +308,7 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       RunBehaviorSetup setup;
       BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
       behaviorContext.iteration = iteration;
+      behaviorContext.firstFrame = first;
       behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
         writeSimulationFrame(stage, bringUp.renderer(), cameraPaths, productNames, options.outDir, result.simulationFrames++);
       };

@@ -6,6 +6,7 @@
 
 #include "assets/file_check.h"
 #include "behaviors/builtin_behaviors.h"
+#include "scripting/hook_watchdog.h"
 #include "scripting/script_loader.h"
 #include "core/text.h"
 #include "core/file_io.h"
@@ -124,6 +125,8 @@ std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const De
   if (p.is_relative()) p = sceneDir / p;
   p = p.lexically_normal();
   std::error_code ec;
+  if (std::filesystem::is_directory(p, ec))
+    throw SceneError(file.loc, std::string(what) + " " + text::quote(file.path) + " is a folder, not a file: " + p.string());
   if (!std::filesystem::is_regular_file(p, ec))
     throw SceneError(file.loc, std::string(what) + " " + text::quote(file.path) + " not found; searched: " + p.string());
   return p.string();
@@ -158,6 +161,7 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
     scripting::loadScript(registry, script.path, script.loc);
   }
   Scene scene = buildScene(doc, registry.catalog(), request.overrides, &assetLibrary);
+  scripting::setHookTimeout(request.hookTimeout.value_or(scene.run.get("hook_timeout").get<double>()));
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
   if (request.confineAssets) assets.confineToRoots();

@@ -24,6 +24,7 @@ struct SceneRequest {
   std::vector<std::string> scripts = {};     // --script
   std::vector<std::string> assetRoots = {};  // --asset-root
   std::string isaacAssets = {};              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
+  std::optional<double> hookTimeout = {};    // --hook-timeout (unset: the scene's run.hook_timeout)
   // The scene's text when it is not read from scenePath (the studio's edits
   // not saved yet); locations still name scenePath.
   std::optional<std::string> sceneText = {};
@@ -86,8 +87,9 @@ Scene flattenedScene(const LoadedScene& loaded);
 void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 
 // Loads and checks the scene, including that every file it names (meshes,
-// textures, behaviors' file lists, plugins) exists and can be read. Throws
-// SceneError for invalid input (exit 2).
+// textures, behaviors' file lists, plugins) exists and can be read, and sets
+// the time limit of calls into behavior scripts (--hook-timeout, else
+// run.hook_timeout). Throws SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
 // Runs a behavior script again after it changed on disk, so that scenes
 // loaded from now on get its new classes (scripting::reloadScript: a

@@ -71,6 +71,7 @@ std::string inspectScene(const Scene& scene) {
   out << "render: " << options(scene.render) << "\n";
   out << "physics: " << options(scene.physics) << "\n";
   out << "capture: " << options(scene.capture) << "\n";
+  out << "run: " << options(scene.run) << "\n";
   for (const WriterConfig& w : scene.writers) {
     // Only what differs from the defaults: the enabled annotators, mostly.
     std::string changed;

@@ -234,6 +234,7 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
   props["render"] = optionsObject(renderOptionSpecs(), "Rendering settings.");
   props["physics"] = optionsObject(physicsOptionSpecs(), "Rigid-body settings of the stacking simulation.");
   props["capture"] = optionsObject(captureOptionSpecs(), "What to capture.");
+  props["run"] = optionsObject(runOptionSpecs(), "How the run guards itself against behavior scripts that hang.");
   props["writer"] = {{"description", "One writer, or a list of writers of different types."},
                      {"oneOf", {{{"$ref", "#/definitions/writer"}},
                                 {{"type", "array"}, {"items", {{"$ref", "#/definitions/writer"}}}}}}};

@@ -103,6 +103,8 @@ void applyToSettings(const Override& o, Scene& scene, Diagnostics& diag) {
     applyToOptions(o, section, key, renderOptionSpecs(), scene.render, diag);
   } else if (section == "physics") {
     applyToOptions(o, section, key, physicsOptionSpecs(), scene.physics, diag);
+  } else if (section == "run") {
+    applyToOptions(o, section, key, runOptionSpecs(), scene.run, diag);
   } else if (section == "capture") {
     applyToOptions(o, section, key, captureOptionSpecs(), scene.capture, diag);
   } else if (section == "stage") {
@@ -134,9 +136,9 @@ void applyToSettings(const Override& o, Scene& scene, Diagnostics& diag) {
     }
     applyToOptions(o, "writer " + writer->type, key, findWriterType(writer->type)->options, writer->options, diag);
   } else {
-    std::vector<std::string> sections = {"render", "capture", "physics", "stage", "writer"};
+    std::vector<std::string> sections = {"render", "capture", "physics", "run", "stage", "writer"};
     diag.error(o.targetLoc, o.label + ": unknown target " + text::quote(o.target) +
-                                "; expected /PRIM/PATH.ATTRIBUTE or one of render.*, capture.*, physics.*, stage.*, writer.*" +
+                                "; expected /PRIM/PATH.ATTRIBUTE or one of render.*, capture.*, physics.*, run.*, stage.*, writer.*" +
                                 text::didYouMean(section, sections));
   }
 }

@@ -131,9 +131,10 @@ void readBehaviors(const RawNode& node, const std::string& what, const BehaviorC
     const BehaviorSpec* spec = catalog.find(key.scalar);
     if (!spec) {
       std::vector<std::string> names = catalog.names();
+      std::string suggestion = text::didYouMean(key.scalar, names);
       diag.error(key.loc, prim.path() + ": unknown behavior " + text::quote(key.scalar) + "; known behaviors: " +
                               (names.empty() ? std::string("(none registered)") : text::join(names, ", ")) +
-                              text::didYouMean(key.scalar, names));
+                              (suggestion.empty() ? std::string(text::kScriptNotLoadedHint) : suggestion));
       continue;
     }
     std::string behaviorWhat = prim.path() + " " + spec->name;

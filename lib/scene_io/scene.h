@@ -1,7 +1,7 @@
 #pragma once
 // A loaded scene: the stage plus the run-level settings that sit beside the
-// prims in the YAML file (render, writers, capture, events, asset roots,
-// plugins). Plain data; the code that applies it lives in run/.
+// prims in the YAML file (render, writers, capture, physics, run, events,
+// asset roots, plugins). Plain data; the code that applies it lives in run/.
 #include <map>
 #include <span>
 #include <string>
@@ -66,6 +66,7 @@ struct Scene {
   OptionSet render;
   OptionSet capture;
   OptionSet physics;
+  OptionSet run;  // how the run guards itself (run.hook_timeout)
   std::vector<WriterConfig> writers;
   std::vector<EventStep> events;
   std::vector<std::string> assetRoots;
@@ -78,7 +79,8 @@ struct Scene {
 
   Scene();
   bool operator==(const Scene& o) const {
-    return stage == o.stage && render == o.render && capture == o.capture && physics == o.physics && writers == o.writers &&
+    return stage == o.stage && render == o.render && capture == o.capture && physics == o.physics && run == o.run &&
+           writers == o.writers &&
            events == o.events && assetRoots == o.assetRoots && plugins == o.plugins && scripts == o.scripts && isaacAssets == o.isaacAssets;
   }
 };
@@ -88,6 +90,7 @@ std::span<const AttributeSpec> stageOptionSpecs();
 std::span<const AttributeSpec> renderOptionSpecs();
 std::span<const AttributeSpec> physicsOptionSpecs();
 std::span<const AttributeSpec> captureOptionSpecs();
+std::span<const AttributeSpec> runOptionSpecs();
 struct WriterTypeInfo {
   std::string_view name;
   std::string_view doc;

@@ -186,6 +186,10 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
     MapReader section(*n, "capture", diag);
     readOptions(section, captureOptionSpecs(), scene.capture, diag);
   }
+  if (const RawNode* n = top.get("run")) {
+    MapReader section(*n, "run", diag);
+    readOptions(section, runOptionSpecs(), scene.run, diag);
+  }
   if (const RawNode* n = top.get("writer")) readWriters(*n, scene, diag);
   if (const RawNode* n = top.get("events")) readEvents(*n, scene, diag);
   if (const RawNode* prims = top.require("prims"))

@@ -212,6 +212,7 @@ std::string writeSceneYaml(const Scene& scene, const BehaviorCatalog& catalog, c
   emitOptions(out, "render", renderOptionSpecs(), scene.render);
   emitOptions(out, "physics", physicsOptionSpecs(), scene.physics);
   emitOptions(out, "capture", captureOptionSpecs(), scene.capture);
+  emitOptions(out, "run", runOptionSpecs(), scene.run);
   if (scene.writers.size() == 1) {
     out << YAML::Key << "writer" << YAML::Value;
     emitWriter(out, scene.writers.front());

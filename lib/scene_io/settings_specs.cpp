@@ -86,6 +86,15 @@ const std::vector<AttributeSpec>& physicsSpecs() {
   return specs;
 }
 
+const std::vector<AttributeSpec>& runSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      atLeast(0, option("hook_timeout", Value::makeDouble(60.0),
+                        "Seconds one call into a behavior script (a hook or an event callback) may take before the run "
+                        "stops with an error naming it; 0 means no limit (--hook-timeout overrides).")),
+  };
+  return specs;
+}
+
 const std::vector<AttributeSpec>& basicWriterSpecs() {
   auto flag = [](std::string name, bool fallback, std::string doc) {
     return option(std::move(name), Value::makeBool(fallback), std::move(doc));
@@ -151,12 +160,14 @@ const SourceLoc* OptionSet::locOf(std::string_view name) const {
   return it == locs_.end() ? nullptr : &it->second;
 }
 
-Scene::Scene() : render(renderOptionSpecs()), capture(captureOptionSpecs()), physics(physicsOptionSpecs()) {}
+Scene::Scene()
+    : render(renderOptionSpecs()), capture(captureOptionSpecs()), physics(physicsOptionSpecs()), run(runOptionSpecs()) {}
 
 std::span<const AttributeSpec> stageOptionSpecs() { return stageSpecs(); }
 std::span<const AttributeSpec> renderOptionSpecs() { return renderSpecs(); }
 std::span<const AttributeSpec> physicsOptionSpecs() { return physicsSpecs(); }
 std::span<const AttributeSpec> captureOptionSpecs() { return captureSpecs(); }
+std::span<const AttributeSpec> runOptionSpecs() { return runSpecs(); }
 
 std::span<const WriterTypeInfo> writerTypes() {
   static const std::vector<WriterTypeInfo> types = {

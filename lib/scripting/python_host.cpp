@@ -1,8 +1,13 @@
 #include "scripting/python_host.h"
 
+#include <atomic>
+#include <map>
+#include <mutex>
+
 #include <pybind11/embed.h>
 
 #include "core/diagnostics.h"
+#include "scripting/hook_watchdog.h"
 
 namespace py = pybind11;
 
@@ -15,10 +20,31 @@ extern "C" PyObject* pybind11_init_impl__sdgbehave();
 
 namespace sdg::scripting {
 namespace {
-bool gStarted = false;
+std::atomic<bool> gStarted = false;
+std::atomic<PyThreadState*> gScriptThread = nullptr;
+pthread_t gScriptThreadId;
+
+// The scripts' paths, absolute -> shown, for threads that cannot touch
+// Python objects (the watchdog, the signal handler's thread).
+std::mutex gPathsMutex;
+std::map<std::string, std::string>& shownPaths() {
+  static auto* paths = new std::map<std::string, std::string>();
+  return *paths;
 }
+}  // namespace
 
 bool PythonHost::started() { return gStarted; }
+
+std::string shownScriptPath(const std::string& path) {
+  std::lock_guard lock(gPathsMutex);
+  auto it = shownPaths().find(path);
+  return it == shownPaths().end() ? path : it->second;
+}
+
+bool isScriptPath(const std::string& path) {
+  std::lock_guard lock(gPathsMutex);
+  return shownPaths().count(path) != 0;
+}
 
 PythonHost& PythonHost::instance() {
   // Never destroyed: the interpreter outlives every object that refers to it.
@@ -64,10 +90,21 @@ PythonHost::PythonHost() {
   py::object code =
       builtins.attr("compile")(py::str(static_cast<const char*>(kSdgbehavePySource)), "sdgbehave.py", "exec");
   builtins.attr("exec")(code, api_.attr("__dict__"));
-  scriptFiles_ = py::set();
+  scriptFiles_ = py::dict();
+  scriptExit_ = api_.attr("ScriptExit");
+  gScriptThreadId = pthread_self();
+  gScriptThread = PyThreadState_Get();
+  api_.attr("_install_watchdog_signal")(watchdogSignal());
 }
 
-void PythonHost::addScriptFile(const std::string& absolutePath) { scriptFiles_.attr("add")(py::str(absolutePath)); }
+PyThreadState* scriptThreadState() { return gScriptThread; }
+pthread_t scriptThread() { return gScriptThreadId; }
+
+void PythonHost::addScriptFile(const std::string& absolutePath, const std::string& shownPath) {
+  scriptFiles_[py::str(absolutePath)] = py::str(shownPath);
+  std::lock_guard lock(gPathsMutex);
+  shownPaths()[absolutePath] = shownPath;
+}
 
 PythonHost::ErrorInfo PythonHost::describe(py::error_already_set& error) {
   py::tuple where = api_.attr("_error_location")(error.value(), error.trace(), scriptFiles_);
@@ -79,10 +116,5 @@ PythonHost::ErrorInfo PythonHost::describe(py::error_already_set& error) {
 }
 
 void PythonHost::seedGlobalRandom(uint64_t seed) { api_.attr("_seed_global_random")(seed); }
-
-void throwScriptRunError(py::error_already_set& error, const std::string& where) {
-  PythonHost::ErrorInfo info = PythonHost::instance().describe(error);
-  throw RunError((info.loc.known() ? info.loc.str() + ": " : std::string()) + where + " raised:\n" + info.text);
-}
 
 }  // namespace sdg::scripting

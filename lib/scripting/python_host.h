@@ -10,6 +10,8 @@
 //
 // Every call into Python happens on the thread that started it (the run's
 // main thread), which holds the interpreter lock throughout.
+#include <pthread.h>
+
 #include <string>
 
 #include <pybind11/pybind11.h>
@@ -27,9 +29,11 @@ class PythonHost {
   // The `sdgbehave` module (the pure-Python half, sdgbehave.py).
   pybind11::object& api() { return api_; }
 
-  // Script files loaded so far (absolute), preferred when a traceback is
-  // reduced to one location.
-  void addScriptFile(const std::string& absolutePath);
+  // A script file loaded: its absolute path (what Python's frames name) and
+  // the path it was given as (relative to the working folder, or absolute),
+  // which every message shows. Script frames are preferred when a traceback
+  // is reduced to one location.
+  void addScriptFile(const std::string& absolutePath, const std::string& shownPath);
 
   // Where a Python error happened (a SyntaxError's own place, else the
   // innermost frame in a script) and its text (the formatted traceback).
@@ -42,15 +46,28 @@ class PythonHost {
   // Seeds `random` (and numpy's global generator) for one iteration.
   void seedGlobalRandom(uint64_t seed);
 
+  // The exception os._exit raises in a script (sdgbehave.ScriptExit).
+  pybind11::handle scriptExitError() const { return scriptExit_; }
+
  private:
   PythonHost();
   // Plain objects: they must stay empty until the interpreter has started.
   pybind11::object api_;
-  pybind11::object scriptFiles_;
+  pybind11::object scriptFiles_;  // a dict: absolute path -> shown path
+  pybind11::object scriptExit_;
 };
 
-// A Python error during a run: a RunError (exit 1) naming `where` (the prim
-// path, behavior and hook) with the script's file:line and traceback.
-[[noreturn]] void throwScriptRunError(pybind11::error_already_set& error, const std::string& where);
+// The Python state of the thread that started the interpreter and runs
+// every script, for reading its stack from other threads; null until the
+// interpreter is ready. Any thread.
+PyThreadState* scriptThreadState();
+// That thread, for signals aimed at it.
+pthread_t scriptThread();
+
+// The path a script was given as, for a path its frames name (absolute);
+// `path` itself when it is no loaded script. Any thread, no interpreter lock.
+std::string shownScriptPath(const std::string& path);
+// Whether `path` (absolute, as frames name it) is a loaded script. Any thread.
+bool isScriptPath(const std::string& path);
 
 }  // namespace sdg::scripting

@@ -8,13 +8,16 @@
 #include <pybind11/stl.h>
 
 #include "assets/asset_resolver.h"
-#include "behaviors/look_at_math.h"
-#include "behaviors/scene_utils.h"
+#include "behavior/behavior_prims.h"
+#include "behavior/run_activity.h"
 #include "core/log.h"
 #include "core/text.h"
+#include "scripting/hook_watchdog.h"
 #include "scripting/python_host.h"
+#include "scripting/script_call.h"
 #include "scripting/script_context.h"
 #include "scripting/value_convert.h"
+#include "stage/look_at.h"
 #include "stage/path.h"
 #include "stage/prim_types.h"
 #include "stage/xform_edit.h"
@@ -225,6 +228,10 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
     else if (level == "error") log::error(message);
     else log::info(message);
   });
+
+  // The watchdog's side (sdgbehave._on_hook_timeout), not part of the API.
+  m.def("_hook_interrupted", &takeInterruption);
+  m.def("_hook_timeout", &hookTimeout);
 
   m.def("look_at_rotation",
         [](py::handle eye, py::handle target, py::handle up) -> py::object {
@@ -489,15 +496,16 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
       .def("subscribe",
            [](const ContextPtr& c, const std::string& event, py::function callback) {
              c->liveStage();
-             // A Python error in the callback stops the run with its traceback.
-             std::string where = c->primPath + ": " + c->ns() + ": the callback for event '" + event + "'";
-             EventBus::Subscription id = c->events->subscribe(event, [callback, where](const Payload& payload) {
-               try {
-                 callback(payloadToPython(payload));
-               } catch (py::error_already_set& e) {
-                 throwScriptRunError(e, where);
-               }
-             });
+             // Watched like a hook: a Python error, a timeout or an exit in the
+             // callback stops the run, naming the callback.
+             EventBus::Subscription id = c->events->subscribe(
+                 event, [callback, prim = c->primPath, ns = c->ns(), script = c->script,
+                         hook = "the callback for event '" + event + "'"](const Payload& payload) {
+                   activity::HookScope scope(prim, ns, hook, activity::HookScope::Kind::Callback);
+                   callScript(
+                       script, [&] { return prim + ": " + ns + ": " + hook; },
+                       [&] { callback(payloadToPython(payload)); });
+                 });
              c->subscriptions.push_back(id);
              return id;
            })

@@ -2,25 +2,25 @@
 
 #include "behavior/rng.h"
 #include "scripting/python_host.h"
+#include "scripting/script_call.h"
 
 namespace py = pybind11;
 
 namespace sdg::scripting {
 
-ScriptBehavior::ScriptBehavior(py::object behaviorClass, std::string rngStream)
+ScriptBehavior::ScriptBehavior(py::object behaviorClass, std::string rngStream, std::string script)
     : class_(std::move(behaviorClass)), ctx_(std::make_shared<ScriptContext>()) {
   ctx_->rngStream = std::move(rngStream);
+  ctx_->script = std::move(script);
 }
 
 ScriptBehavior::~ScriptBehavior() { detach(); }
 
 template <typename... Args>
 void ScriptBehavior::call(const py::object& method, const char* hook, Args&&... args) {
-  try {
-    method(std::forward<Args>(args)...);
-  } catch (py::error_already_set& e) {
-    throwScriptRunError(e, primPath() + ": " + spec().name + "." + hook + "()");
-  }
+  callScript(
+      ctx_->script, [&] { return primPath() + ": " + spec().name + "." + hook + "()"; },
+      [&] { method(std::forward<Args>(args)...); });
 }
 
 void ScriptBehavior::onInit() {
@@ -35,13 +35,13 @@ void ScriptBehavior::onInit() {
   // `random` and numpy's global generator, for scripts that use them anyway:
   // the same seed for every behavior of an iteration keeps runs reproducible.
   PythonHost::instance().seedGlobalRandom(mix64(uint64_t(c.runSeed) ^ mix64(c.iteration + 0x5d)));
-  try {
-    instance_ = class_();
-    instance_.attr("_ctx") = py::cast(ctx_);
-    onUpdate_ = instance_.attr("on_update");
-  } catch (py::error_already_set& e) {
-    throwScriptRunError(e, primPath() + ": " + spec().name + ".__init__()");
-  }
+  callScript(
+      ctx_->script, [&] { return primPath() + ": " + spec().name + ".__init__()"; },
+      [&] {
+        instance_ = class_();
+        instance_.attr("_ctx") = py::cast(ctx_);
+        onUpdate_ = instance_.attr("on_update");
+      });
   call(instance_.attr("on_init"), "on_init");
 }
 

@@ -3,8 +3,9 @@
 // hook calls the script's method of the same name. Around the hooks it keeps
 // what a script should not have to: the random stream, the journals that
 // undo the script's changes on stop and destroy, and the end of its event
-// subscriptions. A Python error in a hook becomes a RunError (exit 1) with
-// the traceback, the prim path and the hook.
+// subscriptions. Each hook runs under the hook watchdog; a Python error, a
+// timeout or an attempt to exit in a hook becomes a RunError (exit 1) with
+// the traceback, the prim path, the hook and the frame (script_call.h).
 #include <memory>
 #include <string>
 
@@ -17,7 +18,8 @@ namespace sdg::scripting {
 
 class ScriptBehavior final : public Behavior {
  public:
-  ScriptBehavior(pybind11::object behaviorClass, std::string rngStream);
+  // `script`: the file defining the class, as shown in messages.
+  ScriptBehavior(pybind11::object behaviorClass, std::string rngStream, std::string script);
   ~ScriptBehavior() override;
 
   void onInit() override;

@@ -25,6 +25,7 @@ struct ScriptContext {
   const AssetResolver* assets = nullptr;  // the scene's search roots
   const BehaviorSpec* spec = nullptr;
   std::string primPath;
+  std::string script;     // the file of the behavior's class, as shown in messages
   std::string rngStream;  // RNG_STREAM, else BEHAVIOR_NS
   int64_t runSeed = 0;
   uint64_t iteration = 0;

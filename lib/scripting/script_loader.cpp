@@ -7,10 +7,12 @@
 #include <pybind11/embed.h>
 #include <pybind11/stl.h>
 
+#include "behavior/run_activity.h"
 #include "core/diagnostics.h"
 #include "core/text.h"
 #include "scripting/python_host.h"
 #include "scripting/script_behavior.h"
+#include "scripting/script_call.h"
 #include "scripting/value_convert.h"
 
 namespace py = pybind11;
@@ -203,7 +205,7 @@ ScriptedBehavior readBehaviorClass(const py::tuple& found, const std::string& fi
 
 LoadedScript runScript(const std::string& path, const std::string& canonical) {
   PythonHost& host = PythonHost::instance();
-  host.addScriptFile(canonical);
+  host.addScriptFile(canonical, path);
   static int counter = 0;
   std::string stem = fs::path(path).stem().string();
   for (char& c : stem)
@@ -211,13 +213,15 @@ LoadedScript runScript(const std::string& path, const std::string& canonical) {
   const std::string moduleName = "sdgbehave_script_" + std::to_string(++counter) + "_" + stem;
   py::list found;
   try {
+    activity::HookScope loading(path, "", "", activity::HookScope::Kind::Loading);
     found = host.api().attr("_load_script")(canonical, moduleName);
   } catch (py::error_already_set& e) {
     PythonHost::ErrorInfo info = host.describe(e);
-    // Report the path as the user wrote it when the error is in that file.
-    SourceLoc loc = info.loc;
-    if (loc.file.str() == canonical) loc.file = path;
-    throw SceneError(loc.known() ? loc : SourceLoc{path, 0, 0}, "loading the script failed:\n" + info.text);
+    SourceLoc loc = info.loc.known() ? info.loc : SourceLoc{path, 0, 0};
+    if (std::string exit = exitCall(e); !exit.empty())
+      throw SceneError(loc, "loading the script failed: its top-level code called " + exit +
+                                ", which a script cannot do; raise an exception instead:\n" + info.text);
+    throw SceneError(loc, "loading the script failed:\n" + info.text);
   }
   LoadedScript script{path, {}};
   Diagnostics diag;
@@ -239,6 +243,23 @@ LoadedScript runScript(const std::string& path, const std::string& canonical) {
 
 }  // namespace
 
+void checkScriptFile(const std::string& path, const SourceLoc& where) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found || (ec && status.type() == fs::file_type::none))
+    throw SceneError(where, "script " + text::quote(path) + " not found");
+  if (status.type() == fs::file_type::directory)
+    throw SceneError(where, "script " + text::quote(path) + " is a folder; give the Python file (.py) itself");
+  if (status.type() != fs::file_type::regular)
+    throw SceneError(where, "script " + text::quote(path) + " is not a regular file");
+  const std::string extension = fs::path(path).extension().string();
+  if (extension != ".py") {
+    const bool scene = extension == ".yaml" || extension == ".yml";
+    throw SceneError(where, "script " + text::quote(path) + " is not a Python file: behavior scripts end in .py" +
+                                (scene ? std::string("; a scene is the command's SCENE argument") : std::string()));
+  }
+}
+
 void reloadScript(const std::string& path) {
   std::error_code ec;
   const std::string canonical = fs::canonical(path, ec).string();
@@ -250,8 +271,8 @@ void reloadScript(const std::string& path) {
 }
 
 void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where) {
+  checkScriptFile(path, where);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw SceneError(where, "script " + text::quote(path) + " not found");
   const std::string canonical = fs::canonical(path, ec).string();
   auto it = loadedScripts().find(canonical);
   if (it == loadedScripts().end()) it = loadedScripts().emplace(canonical, runScript(path, canonical)).first;
@@ -268,7 +289,9 @@ void loadScript(BehaviorRegistry& registry, const std::string& path, const Sourc
     }
     py::object cls = b.cls;
     std::string rngStream = b.rngStream;
-    registry.add(b.spec, [cls, rngStream] { return std::make_unique<ScriptBehavior>(cls, rngStream); }, script.source);
+    std::string source = script.source;
+    registry.add(b.spec, [cls, rngStream, source] { return std::make_unique<ScriptBehavior>(cls, rngStream, source); },
+                 script.source);
   }
 }
 

@@ -18,6 +18,11 @@ namespace sdg::scripting {
 // does nothing.
 void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where);
 
+// A SceneError at `where` unless `path` is an existing regular file ending
+// in .py: a missing file, a folder and (say) a scene each say so, instead of
+// a SyntaxError from reading YAML as Python.
+void checkScriptFile(const std::string& path, const SourceLoc& where);
+
 // Runs `path` again (after it changed on disk), so that registries loaded
 // from now on get its new classes. When it no longer loads, the SceneError
 // says why (file:line) and the last good version stays in use.

@@ -12,13 +12,28 @@ import ast as _ast
 import importlib.util as _importlib_util
 import os as _os
 import random as _random
+import signal as _signal
 import sys as _sys
 import traceback as _traceback
 
 import _sdgbehave as _native
 from _sdgbehave import Prim, Rng, Stage, look_at_rotation  # noqa: F401  (documented API)
 
-__all__ = ["Behavior", "IntervalBehavior", "Prim", "Stage", "Rng", "look_at_rotation", "INTERVAL_VARIABLE"]
+__all__ = ["Behavior", "IntervalBehavior", "Prim", "Stage", "Rng", "look_at_rotation", "INTERVAL_VARIABLE",
+           "ScriptExit"]
+
+
+class ScriptExit(BaseException):
+    """Raised by os._exit() in a script: a behavior cannot end the process
+    (sdgbehave would exit without saying why, leaving a dataset half
+    written). sys.exit() raises SystemExit as usual; both stop the run with
+    an error naming the script's line. Raise an exception to stop a run."""
+
+
+class _HookTimeout(BaseException):
+    """Raised into a hook that ran longer than the hook timeout
+    (--hook-timeout, run.hook_timeout). A BaseException, so that
+    `except Exception` in a script does not swallow it."""
 
 # The `interval` variable of IntervalBehavior; added to VARIABLES_TO_EXPOSE
 # when a subclass does not declare one itself.
@@ -239,27 +254,68 @@ def _load_script(path, module_name):
 
 def _error_location(exc, tb, files):
     """(file, line, column, text) of an exception: a SyntaxError's own place,
-    else the innermost traceback frame in one of `files` (the scripts), else
-    the innermost frame; text is the formatted traceback, without the frames
-    of sdgbehave's own loading machinery."""
+    else the innermost traceback frame in one of the scripts, else the
+    innermost frame; text is the formatted traceback, without the frames of
+    sdgbehave's own loading machinery. `files` maps each script's absolute
+    path to the path it was given as, which every message shows."""
+    def script(filename):
+        return files.get(filename) or files.get(_os.path.abspath(filename))
+
+    def shown(filename):
+        return script(filename) or filename
+
     if isinstance(exc, SyntaxError) and exc.filename:
-        return exc.filename, exc.lineno or 0, exc.offset or 0, f"{type(exc).__name__}: {exc.msg}"
+        return shown(exc.filename), exc.lineno or 0, exc.offset or 0, f"{type(exc).__name__}: {exc.msg}"
     frames = [f for f in _traceback.extract_tb(tb)
-              if f.filename != "sdgbehave.py" or f.name not in ("_load_script",)]
+              if f.filename != "sdgbehave.py" or f.name not in ("_load_script", "_on_hook_timeout", "_exit")]
     frames = [f for f in frames if not f.filename.startswith("<frozen importlib")]
+    chosen = None
+    for frame in frames:
+        if script(frame.filename):
+            chosen = frame
+        frame.filename = shown(frame.filename)  # the source lines are already read
     text = "Traceback (most recent call last):\n" + "".join(_traceback.format_list(frames)) + \
         "".join(_traceback.format_exception_only(type(exc), exc))
     text = text.rstrip()
-    chosen = None
-    for frame in frames:
-        if _os.path.abspath(frame.filename) in files or frame.filename in files:
-            chosen = frame
     if chosen is None and frames:
         chosen = frames[-1]
     if chosen is None:
         return "", 0, 0, text
     column = (chosen.colno + 1) if getattr(chosen, "colno", None) is not None else 0
     return chosen.filename, chosen.lineno or 0, column, text
+
+
+def _on_hook_timeout(signum, frame):
+    """The watchdog's signal: raises _HookTimeout in the stuck call, where it
+    is, if the call it was sent for is still running."""
+    if _native._hook_interrupted():
+        raise _HookTimeout(f"the call ran longer than the hook timeout ({_native._hook_timeout():g} s)")
+
+
+def _install_watchdog_signal(signum):
+    """The watchdog interrupts a stuck call with this signal, sent to the
+    thread that runs scripts: Python then calls _on_hook_timeout at the next
+    bytecode, and a sleep or a blocking read returns early."""
+    _signal.signal(signum, _on_hook_timeout)
+
+
+def _guard_exits():
+    """Replaces os._exit, which would end sdgbehave on the spot, with a
+    function raising ScriptExit (in the process that loaded the scripts: a
+    child a script forked keeps the real one)."""
+    real_exit = _os._exit
+    owner = _os.getpid()
+
+    def _exit(status=0):
+        if _os.getpid() != owner:
+            real_exit(status)
+        raise ScriptExit(f"os._exit({status!r})")
+
+    _exit.__doc__ = real_exit.__doc__
+    _os._exit = _exit
+    posix = _sys.modules.get("posix")
+    if posix is not None:
+        posix._exit = _exit
 
 
 def _seed_global_random(seed):
@@ -270,3 +326,6 @@ def _seed_global_random(seed):
     numpy = _sys.modules.get("numpy")
     if numpy is not None:
         numpy.random.seed(seed % (2 ** 32))
+
+
+_guard_exits()

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "behaviors/look_at_math.h"
+#include "stage/look_at.h"
 #include "stage/xform_edit.h"
 
 using namespace sdg;

@@ -3,7 +3,9 @@
 the scene's pre-roll waits for a script's reply; a ping published in one
 update reaches the listening script in the next; what the listener wrote
 while playing is undone on stop, what the responder wrote in the pre-roll
-stays until the end of the run.
+stays until the end of the run. A long run: the ping of the last update is
+delivered when the timeline stops, and current_time at frame 9999 is
+exactly 10000 / 60 (counted, not summed).
 
 usage: check_script_events.py SDGBEHAVE SCENE"""
 import json
@@ -36,7 +38,18 @@ def main():
     if changes != expected:
         print("record:\n" + "\n".join(map(str, changes)) + "\nexpected:\n" + "\n".join(map(str, expected)))
         return 1
-    print("pre-roll reply, one-update delivery and restore on stop as expected")
+    result = subprocess.run([binary, "run", scene, "--no-render", "--frames", "10000", "-v"],
+                            capture_output=True, text=True, timeout=300)
+    if result.returncode != 0:
+        print(f"exit {result.returncode}:\n{result.stderr}")
+        return 1
+    expected_lines = ["/World/Ear: listener: heard 10000 pings, the last 10000",
+                      f"/World/Talker: pinger: sent 10000 pings; the last current_time was {10000 / 60!r}"]
+    missing = [line for line in expected_lines if line not in result.stderr]
+    if missing:
+        print("stderr lacks:\n" + "\n".join(missing) + "\n--- stderr\n" + result.stderr)
+        return 1
+    print("pre-roll reply, one-update delivery, delivery at stop, restore on stop and the time as expected")
     return 0
 
 

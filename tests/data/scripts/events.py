@@ -1,5 +1,7 @@
 """Scripts that talk through events: one answers the scene's pre-roll, one
-publishes on every apply, one listens and writes what it heard."""
+publishes on every apply, one listens and writes what it heard. On stop,
+the pinger logs (debug) the last current_time it saw and the listener how many
+pings it heard (the last one is delivered when the timeline stops)."""
 import sdgbehave
 
 
@@ -33,6 +35,14 @@ class Pinger(sdgbehave.IntervalBehavior):
         self.sent += 1
         self.publish("test.ping", {"n": self.sent, "from": self.prim_path})
 
+    def on_update(self, current_time, delta_time):
+        self.last_time = current_time
+        super().on_update(current_time, delta_time)
+
+    def on_stop(self):
+        self.log.debug(f"sent {self.sent} pings; the last current_time was {self.last_time!r}")
+        super().on_stop()
+
 
 class Listener(sdgbehave.Behavior):
     """Writes the last ping it heard into user:lastPing."""
@@ -40,5 +50,12 @@ class Listener(sdgbehave.Behavior):
     BEHAVIOR_NS = "listener"
 
     def on_init(self):
-        self.subscribe("test.ping", lambda payload: self.prim.set_attribute("user:lastPing", int(payload["n"]),
-                                                                            type="int"))
+        self.heard = []
+        self.subscribe("test.ping", self.on_ping)
+
+    def on_ping(self, payload):
+        self.heard.append(int(payload["n"]))
+        self.prim.set_attribute("user:lastPing", int(payload["n"]), type="int")
+
+    def on_stop(self):
+        self.log.debug(f"heard {len(self.heard)} pings, the last {self.heard[-1] if self.heard else None}")

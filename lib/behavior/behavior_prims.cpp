@@ -1,4 +1,4 @@
-#include "behaviors/scene_utils.h"
+#include "behavior/behavior_prims.h"
 
 #include <cstdio>
 

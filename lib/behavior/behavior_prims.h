@@ -1,5 +1,6 @@
 #pragma once
-// Stage helpers behaviors share when they create prims under /Behaviors.
+// Where behaviors create prims (/Behaviors) and the stage helpers they share
+// to name, create and tidy them there: built-ins and scripts alike.
 #include <string>
 
 #include "stage/stage.h"
