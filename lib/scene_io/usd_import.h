@@ -1,0 +1,82 @@
+#pragma once
+// A composed USD stage (usd/compose.h) onto sdgbehave's Stage: the one
+// place that knows both. After it, nothing downstream knows a prim came
+// from USD.
+//
+//   importUsdScene       the driver (usd_import.cpp): the prim tree, types,
+//                        xform ops, geometry (gprims, Mesh with its primvars
+//                        and GeomSubsets), lights, cameras, units and up axis
+//                        (the stage is Z-up metres: the root layer's units and
+//                        each referenced layer's `unitsChange` become
+//                        correcting transforms), `active`/`instanceable`,
+//                        the defaults a USD stage does not say (writer,
+//                        capture), and the calls below for each prim.
+//   importUsdMaterial    materials (usd_materials.cpp): UsdPreviewSurface with
+//                        UsdUVTexture / UsdPrimvarReader_float2 /
+//                        UsdTransform2d, and Isaac's MDL OmniPBR by its
+//                        inputs, onto a stage Material prim; anything else
+//                        falls back with one warning naming the material.
+//   importUsdPrimLabels  per prim (usd_prim_labels.cpp): material binding
+//                        (material:binding, GeomSubset bindings as the
+//                        driver hands them), semantics in both of Isaac's
+//                        forms, and behaviors as Isaac attaches them
+//                        (omni:scripting:scripts + exposedVar:<ns>:<name>).
+//
+// Problems go to `diag` located at the USD file:line:col of the opinion
+// (ComposedPrim::loc / ComposedProperty::loc), so `validate stage.usda`
+// reports them as it reports a YAML scene's.
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "scene_io/scene.h"
+#include "stage/behavior_spec.h"
+#include "usd/compose.h"
+
+namespace sdg {
+
+struct UsdImportOptions {
+  // --set style variant choices: prim path -> variant set -> variant.
+  usd::VariantOverrides variants;
+  // Isaac's six behavior scripts named by file stand in for the built-ins
+  // of the same name; other .py files listed in omni:scripting:scripts are
+  // loaded as behavior scripts (the loader registers them before import).
+  bool builtinsForIsaacScripts = true;
+};
+
+// What importing found besides the stage: script files the prims list
+// (absolute), every layer read (for the run's identity), warnings said once.
+struct UsdImportReport {
+  std::vector<std::string> scriptFiles;
+  std::vector<std::string> layers;
+  std::vector<std::string> warnings;
+};
+
+// The whole scene of a USD stage file (`sdgbehave run stage.usda`). Throws
+// SceneError (exit 2) with every problem located.
+Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, const UsdImportOptions& options,
+                     UsdImportReport& report);
+
+// The composed prims under `sourceRoot` of `composed` defined at
+// `mountPath` of `stage` (whose parent exists): a YAML `reference:` to a
+// USD file, or the whole stage for importUsdScene ("/" → "/").
+void importUsdPrims(const usd::ComposedStage& composed, const std::string& sourceRoot, Stage& stage,
+                    const std::string& mountPath, const BehaviorCatalog& catalog, const UsdImportOptions& options,
+                    UsdImportReport& report, Diagnostics& diag);
+
+// A Material prim (and its shader network below it) as a stage Material at
+// `stagePath` (already defined by the driver as PrimType::Material).
+void importUsdMaterial(const usd::ComposedStage& composed, const usd::ComposedPrim& material, Prim& stagePrim,
+                       Diagnostics& diag, UsdImportReport& report);
+
+// Binding, semantics and behaviors of one prim. `mapPath` turns a path of
+// the composed stage into the stage path it was imported at (bindings and
+// behaviors' prim-path variables point into the stage).
+void importUsdPrimLabels(const usd::ComposedStage& composed, const usd::ComposedPrim& prim, Prim& stagePrim,
+                         const std::function<std::string(const std::string&)>& mapPath,
+                         const BehaviorCatalog& catalog, const UsdImportOptions& options, UsdImportReport& report,
+                         Diagnostics& diag);
+
+}  // namespace sdg
