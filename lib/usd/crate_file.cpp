@@ -252,7 +252,7 @@ void CrateFile::readPaths() {
 // Walks the encoded tree depth first: each node either has a child (the
 // next node), a sibling (`jump` nodes on), both, or neither (-2). Iterative,
 // so that a deep tree cannot exhaust the stack; every node is visited at
-// most once, so a jump that loops back fails instead of running forever.
+// most once (a path index assigned twice is an error), so the walk ends.
 void CrateFile::buildPathTree(const std::vector<uint32_t>& pathIndexes, const std::vector<int32_t>& elementTokens,
                               const std::vector<int32_t>& jumps) {
   const size_t n = pathIndexes.size();
@@ -266,10 +266,10 @@ void CrateFile::buildPathTree(const std::vector<uint32_t>& pathIndexes, const st
   size_t node = 0;
   int64_t parent = -1;
   const uint64_t maxDepth = uint64_t(limits_.maxNesting) * 2;  // prim nesting plus variants and properties
-  for (size_t visited = 0;; ++visited) {
+  // Every step assigns a path index not assigned before, so the walk ends.
+  for (;;) {
     if (node >= n)
       throw CodingError("the path tree jumps to node " + std::to_string(node) + " of " + std::to_string(n));
-    if (visited >= n) throw CodingError("the path tree visits more nodes than it holds (a jump loops)");
     uint32_t index = pathIndexes[node];
     if (index >= paths_.size())
       throw CodingError("node " + std::to_string(node) + " has path index " + std::to_string(index) +

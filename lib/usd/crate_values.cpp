@@ -249,21 +249,6 @@ Value CrateValueReader::unpack(ValueRep rep, uint32_t depth) {
     v.strings.push_back(std::move(s));
     return v;
   };
-  auto textVector = [this](Kind kind, ByteCursor& in, auto lookup) {
-    Value v;
-    v.kind = kind;
-    auto count = in.readCount("vector size", 4);
-    v.strings.reserve(count);
-    for (uint64_t i = 0; i < count; ++i) {
-      v.strings.push_back(lookup(in.read<uint32_t>("vector item")));
-      charge(v.strings.back().size() + 32);
-    }
-    return v;
-  };
-  auto tokenAt = [this](uint32_t i) { return crate_.token(i); };
-  auto stringAt = [this](uint32_t i) { return crate_.string(i); };
-  auto pathAt = [this](uint32_t i) { return crate_.path(i); };
-
   switch (T(type)) {
     case T::String:
       return rep.isArray() ? unpackTextArray(rep, Kind::String) : textValue(Kind::String, crate_.string(rep.payload32()));
@@ -310,6 +295,58 @@ Value CrateValueReader::unpack(ValueRep rep, uint32_t depth) {
   if (type > uint8_t(T::Relocates) || T(type) == T::UnregisteredValue || T(type) == T::UnregisteredValueListOp ||
       T(type) == T::Invalid)
     return unsupported(type);  // its data is not looked at: a newer type's layout is unknown
+
+  // Values that hold their data by shared pointer are decoded once per rep:
+  // fields share reps, and a hostile file can make dictionaries share
+  // entries level after level, which would otherwise cost 2^depth.
+  switch (T(type)) {
+    case T::Dictionary:
+    case T::VariantSelectionMap:
+    case T::TokenListOp:
+    case T::StringListOp:
+    case T::PathListOp:
+    case T::ReferenceListOp:
+    case T::PayloadListOp:
+    case T::IntListOp:
+    case T::UIntListOp:
+    case T::Int64ListOp:
+    case T::UInt64ListOp:
+    case T::Payload:
+    case T::LayerOffsetVector:
+    case T::TimeSamples: {
+      if (auto it = shared_.find(rep.bits); it != shared_.end()) return it->second;
+      Value v = unpackOutOfLine(rep, depth);
+      shared_.emplace(rep.bits, v);
+      return v;
+    }
+    default: return unpackOutOfLine(rep, depth);
+  }
+}
+
+Value CrateValueReader::unpackOutOfLine(ValueRep rep, uint32_t depth) {
+  const uint8_t type = rep.type();
+  using T = CrateType;
+  auto textValue = [this](Kind kind, std::string s) {
+    charge(s.size());
+    Value v;
+    v.kind = kind;
+    v.strings.push_back(std::move(s));
+    return v;
+  };
+  auto textVector = [this](Kind kind, ByteCursor& in, auto lookup) {
+    Value v;
+    v.kind = kind;
+    auto count = in.readCount("vector size", 4);
+    v.strings.reserve(count);
+    for (uint64_t i = 0; i < count; ++i) {
+      v.strings.push_back(lookup(in.read<uint32_t>("vector item")));
+      charge(v.strings.back().size() + 32);
+    }
+    return v;
+  };
+  auto tokenAt = [this](uint32_t i) { return crate_.token(i); };
+  auto stringAt = [this](uint32_t i) { return crate_.string(i); };
+  auto pathAt = [this](uint32_t i) { return crate_.path(i); };
 
   ByteCursor in = at(rep.payload());
   Value v;

@@ -15,6 +15,7 @@
 // Kind::Unsupported: strings[0] names the crate type, enumValue holds its
 // number, and for path expressions and relocates strings[1..] hold the text.
 #include <cstdint>
+#include <unordered_map>
 
 #include "usd/crate_bytes.h"
 #include "usd/crate_file.h"
@@ -34,6 +35,7 @@ class CrateValueReader {
 
  private:
   Value unpack(ValueRep rep, uint32_t depth);
+  Value unpackOutOfLine(ValueRep rep, uint32_t depth);
   Value unpackNumeric(ValueRep rep, uint8_t type);
   Value unpackNumericArray(ValueRep rep, uint8_t type);
   Value unpackTextArray(ValueRep rep, Kind kind);
@@ -47,6 +49,7 @@ class CrateValueReader {
 
   const CrateFile& crate_;
   uint64_t budget_;
+  std::unordered_map<uint64_t, Value> shared_;  // decoded values by rep bits (see unpack)
 };
 
 }  // namespace sdg::usd

@@ -153,6 +153,7 @@ std::vector<uint8_t> CrateBuilder::finish() {
     std::vector<uint32_t> indexes{nodes_[0].index};
     std::vector<int32_t> tokens{0}, jumps{nodes_[0].children.empty() ? -2 : -1};
     encodeTree(0, indexes, tokens, jumps);
+    if (editPathTree) editPathTree(indexes, tokens, jumps);
     put<uint64_t>(pathCount_);
     put<uint64_t>(indexes.size());
     putCompressed(indexes);

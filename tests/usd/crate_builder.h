@@ -6,6 +6,7 @@
 // so the tests say byte for byte what each version of the format stores.
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <span>
 #include <string>
@@ -65,6 +66,10 @@ class CrateBuilder {
   // by default); the byte ranges of each are in sections() afterwards.
   std::vector<uint8_t> finish();
   const std::map<std::string, CrateSection>& sections() const { return sections_; }
+
+  // Hostile tests: edits the encoded path tree (path indexes, element
+  // tokens, jumps) before it is written.
+  std::function<void(std::vector<uint32_t>&, std::vector<int32_t>&, std::vector<int32_t>&)> editPathTree;
   uint64_t tocOffset() const { return tocOffset_; }
 
  private:

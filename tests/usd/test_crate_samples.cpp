@@ -223,3 +223,33 @@ TEST_CASE("RoughnessTest: many meshes and materials", "[.][usd-samples]") {
   UsdzPackage pkg(path);
   CHECK(pkg.read(pkg.resolve("RoughnessTest.usdc", "0/roughness.tga")).size() == 196652);
 }
+
+TEST_CASE("sample crate layers cut short or with flipped bits fail cleanly", "[.][usd-samples]") {
+  const std::string path = package("test_assets/USDZ/BoxAnimated/BoxAnimated.usdz");
+  UsdzPackage pkg(path);
+  const auto bytes = pkg.read("BoxAnimated.imported.usdc");
+  auto readsOrFailsCleanly = [](const std::vector<uint8_t>& b) {
+    try {
+      readCrateLayer(b, "box.usdc");
+      return true;
+    } catch (const UsdError& e) {
+      CHECK(std::string(e.what()).rfind("box.usdc: crate ", 0) == 0);
+      return false;
+    }
+  };
+  for (size_t n = 0; n < bytes.size(); n += 3) {
+    INFO("prefix of " << n << " bytes");
+    CHECK_FALSE(readsOrFailsCleanly(std::vector<uint8_t>(bytes.begin(), bytes.begin() + ptrdiff_t(n))));
+  }
+  uint64_t state = 12345;  // a fixed sequence of positions, so a failure reproduces
+  int parsed = 0;
+  for (int i = 0; i < 4000; ++i) {
+    state = state * 6364136223846793005u + 1442695040888963407u;
+    auto flipped = bytes;
+    size_t at = size_t(state >> 33) % bytes.size();
+    flipped[at] = uint8_t(flipped[at] ^ (1u << ((state >> 20) & 7)));
+    INFO("bit flip at byte " << at);
+    parsed += readsOrFailsCleanly(flipped);
+  }
+  CHECK(parsed > 0);
+}
