@@ -112,6 +112,7 @@ T load(const uint8_t* p) {
 
 // Appends `count` scalars of type `s` stored contiguously at `p`.
 void appendScalars(Scalar s, const uint8_t* p, size_t count, std::vector<double>& out) {
+  if (count == 0) return;  // (an empty span's data may be null)
   size_t at = out.size();
   out.resize(at + count);
   double* o = out.data() + at;
