@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sdg::usd {
@@ -52,6 +53,19 @@ int componentCount(Kind kind);              // 1 for scalars, 2..4 for vectors, 
 bool isNumeric(Kind kind);
 bool isText(Kind kind);
 
+// An attribute's value type: its Kind and whether it is an array. Role
+// names map to the Kind of their C++ type ("point3f" and "color3f" are both
+// Vec3f, "frame4d" is Matrix4d); the role stays in the spec's typeName.
+struct ValueType {
+  Kind kind = Kind::Empty;
+  bool isArray = false;
+};
+// Sdf's value type names ("float3", "point3f[]", "texCoord2f", "asset",
+// "matrix4d", ...); nullopt for any other name.
+std::optional<ValueType> valueTypeForName(std::string_view typeName);
+// Every name valueTypeForName accepts, without "[]" (for did-you-mean hints).
+const std::vector<std::string>& valueTypeNames();
+
 enum class Specifier : uint8_t { Def, Over, Class };
 enum class Variability : uint8_t { Varying, Uniform };
 enum class Permission : uint8_t { Public, Private };
@@ -73,6 +87,7 @@ struct Reference {
   LayerOffset offset;
   std::shared_ptr<Dictionary> customData;  // null when none is authored
 };
+bool operator==(const Reference& a, const Reference& b);
 
 // Sdf's list op: either an explicit list, or edits to the weaker opinion's
 // list (delete, then prepend and append; `added` and `ordered` are the old
@@ -90,6 +105,7 @@ struct ListOp {
     return !isExplicit && addedItems.empty() && prependedItems.empty() && appendedItems.empty() &&
            deletedItems.empty() && orderedItems.empty();
   }
+  bool operator==(const ListOp&) const = default;
 };
 
 struct TimeSamples;
@@ -133,6 +149,8 @@ class Value {
   const std::string& asString() const;       // String, Token or AssetPath scalar
   const std::vector<std::string>& asStrings() const;
 };
+// Deep equality (the shared parts compared by content).
+bool operator==(const Value& a, const Value& b);
 
 struct TimeSamples {
   std::vector<double> times;  // ascending
@@ -141,6 +159,7 @@ struct TimeSamples {
   // before the first sample; no interpolation here — callers that need
   // linear interpolation of numbers do it themselves).
   const Value* heldAt(double time) const;
+  bool operator==(const TimeSamples&) const = default;
 };
 
 }  // namespace sdg::usd
