@@ -147,61 +147,7 @@ std::optional<ValueType> valueTypeForName(std::string_view typeName) {
   return result;
 }
 
-// ---- ListOp ----------------------------------------------------------------
-
-namespace {
-
-template <class T>
-bool contains(const std::vector<T>& items, const T& item) {
-  return std::find(items.begin(), items.end(), item) != items.end();
-}
-
-template <class T>
-void removeItem(std::vector<T>& items, const T& item) {
-  items.erase(std::remove(items.begin(), items.end(), item), items.end());
-}
-
-}  // namespace
-
-template <class T>
-std::vector<T> ListOp<T>::applyTo(const std::vector<T>& weaker) const {
-  std::vector<T> result;
-  if (isExplicit) {
-    for (const T& item : explicitItems)
-      if (!contains(result, item)) result.push_back(item);
-    return result;
-  }
-  for (const T& item : weaker)
-    if (!contains(result, item)) result.push_back(item);
-  for (const T& item : deletedItems) removeItem(result, item);
-  for (const T& item : addedItems)
-    if (!contains(result, item)) result.push_back(item);
-  // Prepended items go to the front in their order, moving any copy already there.
-  std::vector<T> front;
-  for (const T& item : prependedItems)
-    if (!contains(front, item)) front.push_back(item);
-  for (const T& item : front) removeItem(result, item);
-  result.insert(result.begin(), front.begin(), front.end());
-  for (const T& item : appendedItems) {
-    removeItem(result, item);
-    result.push_back(item);
-  }
-  // The old `reorder` form: the listed items that are present take, among
-  // the positions they occupy, the order given.
-  if (!orderedItems.empty()) {
-    std::vector<size_t> slots;
-    for (size_t i = 0; i < result.size(); ++i)
-      if (contains(orderedItems, result[i])) slots.push_back(i);
-    size_t next = 0;
-    std::vector<T> seen;
-    for (const T& item : orderedItems)
-      if (contains(result, item) && !contains(seen, item)) {
-        seen.push_back(item);
-        result[slots[next++]] = item;
-      }
-  }
-  return result;
-}
+// ---- ListOp (applyTo is defined in value.h, for composition's own item types) ----
 
 template struct ListOp<std::string>;
 template struct ListOp<int64_t>;

@@ -12,6 +12,7 @@
 // SDG scene uses (int32, float, half, double, and int64 below 2^53) is exact
 // in a double, and one numeric store keeps the type small. `kind` keeps the
 // USD type so that writing a layer back gives the same type name.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -161,5 +162,52 @@ struct TimeSamples {
   const Value* heldAt(double time) const;
   bool operator==(const TimeSamples&) const = default;
 };
+
+template <class T>
+std::vector<T> ListOp<T>::applyTo(const std::vector<T>& weaker) const {
+  auto contains = [](const std::vector<T>& items, const T& item) {
+    return std::find(items.begin(), items.end(), item) != items.end();
+  };
+  auto remove = [](std::vector<T>& items, const T& item) {
+    items.erase(std::remove(items.begin(), items.end(), item), items.end());
+  };
+  std::vector<T> result;
+  if (isExplicit) {
+    for (const T& item : explicitItems)
+      if (!contains(result, item)) result.push_back(item);
+    return result;
+  }
+  for (const T& item : weaker)
+    if (!contains(result, item)) result.push_back(item);
+  for (const T& item : deletedItems) remove(result, item);
+  for (const T& item : addedItems)
+    if (!contains(result, item)) result.push_back(item);
+  // Prepended items go to the front in their order, moving any copy already there.
+  std::vector<T> front;
+  for (const T& item : prependedItems)
+    if (!contains(front, item)) front.push_back(item);
+  for (const T& item : front) remove(result, item);
+  result.insert(result.begin(), front.begin(), front.end());
+  for (const T& item : appendedItems) {
+    remove(result, item);
+    result.push_back(item);
+  }
+  // The old `reorder` form: the listed items that are present take, among
+  // the positions they occupy, the order given.
+  if (!orderedItems.empty()) {
+    std::vector<size_t> slots;
+    for (size_t i = 0; i < result.size(); ++i)
+      if (contains(orderedItems, result[i])) slots.push_back(i);
+    std::vector<T> placed;
+    for (const T& item : orderedItems)
+      if (contains(result, item) && !contains(placed, item)) placed.push_back(item);
+    for (size_t i = 0; i < placed.size(); ++i) result[slots[i]] = placed[i];
+  }
+  return result;
+}
+
+extern template struct ListOp<std::string>;
+extern template struct ListOp<int64_t>;
+extern template struct ListOp<Reference>;
 
 }  // namespace sdg::usd
