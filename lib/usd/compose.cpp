@@ -345,6 +345,10 @@ void Composer::composeProperties(ComposedPrim& prim, const PrimIndex& index, con
       detail::ResolvedValue resolved = detail::resolveAttributeValue(index, name, stage_.timeCode);
       prop.value = std::move(resolved.value);
       prop.fromTimeSamples = resolved.fromTimeSamples;
+      if (resolved.layer) prop.valueLayer = resolved.layer->identifier;
+      if (prop.value.kind == Kind::AssetPath)
+        for (const std::string& asset : prop.value.strings)
+          prop.resolvedAssets.push_back(asset.empty() ? std::string() : resolveAssetPath(asset, prop.valueLayer));
       prop.connections = composePaths(index, name, field::kConnectionPaths, composedPath);
     }
     prim.properties.push_back(std::move(prop));
@@ -364,7 +368,9 @@ void Composer::checkOverridesUsed() const {
 }
 
 ComposedStage composeStage(const std::string& rootIdentifier, const LayerReader& reader, const ComposeOptions& options) {
-  Composer composer(rootIdentifier, reader, options);
+  // The same form resolved asset paths have, so that a layer reached both
+  // ways is one layer.
+  Composer composer(resolveAssetPath(rootIdentifier, ""), reader, options);
   return composer.run();
 }
 

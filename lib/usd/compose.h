@@ -68,6 +68,10 @@ struct ComposedProperty {
   // opinion is a block (`None`).
   Value value;
   bool fromTimeSamples = false;  // `value` comes from time samples
+  std::string valueLayer;        // the layer that holds `value` ("" when none)
+  // Asset values (asset, asset[]): each path resolved against valueLayer
+  // (a file path, or "pkg.usdz[inner]" inside a package).
+  std::vector<std::string> resolvedAssets;
   std::vector<std::string> connections;  // attributes, in the composed namespace
   std::vector<std::string> targets;      // relationships, in the composed namespace
   std::map<std::string, Value> metadata;  // interpolation, elementSize, colorSpace, customData, ...

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "usd/compose_internal.h"
+#include "usd/layer_io.h"
 #include "usd/sdf_path.h"
 
 namespace sdg::usd {
@@ -39,6 +40,14 @@ bool strongerSibling(const Node& a, const Node& b) {
   if (a.arc != b.arc) return a.arc < b.arc;
   if (a.namespaceDepth != b.namespaceDepth) return a.namespaceDepth > b.namespaceDepth;
   return a.siblingNumber < b.siblingNumber;
+}
+
+bool isUsdLayerPath(const std::string& resolved) {
+  std::string inner = splitPackagePath(resolved).second;
+  std::string name = inner.empty() ? resolved : inner;
+  size_t dot = name.rfind('.');
+  std::string ext = dot == std::string::npos ? "" : name.substr(dot);
+  return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
 }
 
 // Where the spec at `path` was written (the arcs found there name it in errors).
@@ -172,6 +181,10 @@ void IndexBuilder::addReferenceArcs(PrimIndex& index, int n, const std::string& 
     const LayerStack* target = stack;
     if (!internal) {
       std::string resolved = resolveAssetPath(ref.assetPath, authoring.identifier);
+      if (!isUsdLayerPath(resolved)) {  // MaterialX and other formats USD reads through plugins
+        warnings_.push_back(at.str() + ": " + arcText + ": not a USD layer (.usd, .usda, .usdc, .usdz); ignored");
+        continue;
+      }
       target = &cache_.stack(resolved, at, arcText);
     }
     std::string targetPath = ref.primPath;

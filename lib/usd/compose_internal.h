@@ -154,6 +154,7 @@ std::vector<SourcedItem<Reference>> composeReferenceListOp(const LayerStack& sta
 struct ResolvedValue {
   Value value;
   bool fromTimeSamples = false;
+  const Layer* layer = nullptr;  // the layer that holds it
 };
 ResolvedValue resolveAttributeValue(const PrimIndex& index, const std::string& propertyName, double time);
 

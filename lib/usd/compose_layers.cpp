@@ -30,13 +30,16 @@ LayerUnits unitsOf(const Layer& layer) {
 }  // namespace
 
 std::string resolveAssetPath(const std::string& assetPath, const std::string& anchorIdentifier) {
+  if (auto [package, entry] = splitPackagePath(assetPath); !entry.empty())  // "pkg.usdz[inner]" as written
+    return resolveAssetPath(package, anchorIdentifier) + "[" + normal(entry) + "]";
   if (!assetPath.empty() && assetPath[0] == '/') return normal(assetPath);
   auto [package, entry] = splitPackagePath(anchorIdentifier);
   if (!entry.empty() || isPackage(anchorIdentifier)) {
     // Inside a package: relative to the writing entry's folder, in the package.
     std::string inner = normal(std::filesystem::path(entry).parent_path() / assetPath);
     if (inner.rfind("../", 0) != 0 && inner != "..") return package + "[" + inner + "]";
-    return normal(std::filesystem::path(package).parent_path() / inner);  // out of the package: beside it
+    // Climbing out of the package root leads to the package's folder.
+    return normal(std::filesystem::path(package).parent_path() / inner.substr(inner == ".." ? 2 : 3));
   }
   return normal(std::filesystem::path(anchorIdentifier).parent_path() / assetPath);
 }

@@ -168,11 +168,11 @@ ResolvedValue resolveAttributeValue(const PrimIndex& index, const std::string& p
         double layerTime = offset.scale != 0 ? (time - offset.offset) / offset.scale : time;
         Value v = sampleAt(*samples->timeSamples, layerTime);
         if (v.kind == Kind::ValueBlock) return {};
-        return {std::move(v), true};
+        return {std::move(v), true, node.stack->layers[i]};
       }
       if (const Value* value = spec->field(field::kDefault)) {
         if (value->kind == Kind::ValueBlock) return {};
-        return {*value, false};
+        return {*value, false, node.stack->layers[i]};
       }
     }
   }

@@ -9,7 +9,9 @@
 
 namespace sdg::usd::test {
 
-inline std::string samplesDir() { return std::string(SDG_SOURCE_DIR) + "/../shared/usd-samples"; }
+inline std::string samplesDir() {
+  return (std::filesystem::path(SDG_SOURCE_DIR) / "../shared/usd-samples").lexically_normal().generic_string();
+}
 
 // Every file under the samples folder whose name ends with one of `extensions`, sorted.
 inline std::vector<std::string> sampleFiles(const std::vector<std::string>& extensions) {

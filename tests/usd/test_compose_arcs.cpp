@@ -378,3 +378,26 @@ def "Same" (references = @m_zup.usda@</M>) {}
   CHECK(other->unitsChange->into.upAxis == "Z");
   CHECK_FALSE(stage.prim("/Same")->unitsChange);
 }
+
+TEST_CASE("compose: asset paths resolve against the layer that wrote them, inside packages too", "[compose]") {
+  CHECK(resolveAssetPath("./b.usda", "/x/y/a.usda") == "/x/y/b.usda");
+  CHECK(resolveAssetPath("../b.usda", "/x/y/a.usda") == "/x/b.usda");
+  CHECK(resolveAssetPath("b.usda", "rel/a.usda") == "rel/b.usda");
+  CHECK(resolveAssetPath("/abs/./b.usda", "/x/a.usda") == "/abs/b.usda");
+  CHECK(resolveAssetPath("./tex/wood.png", "/p/pkg.usdz") == "/p/pkg.usdz[tex/wood.png]");
+  CHECK(resolveAssetPath("../b.usdc", "/p/pkg.usdz[geo/a.usdc]") == "/p/pkg.usdz[b.usdc]");
+  CHECK(resolveAssetPath("../../beside.usda", "/p/pkg.usdz[geo/a.usdc]") == "/p/beside.usda");
+  CHECK(resolveAssetPath("./other.usdz[x/../y.usda]", "/p/a.usda") == "/p/other.usdz[y.usda]");
+
+  // A package's root layer referencing another entry of the package.
+  MemoryLayers layers;
+  layers.texts["/p/pkg.usdz"] = "#usda 1.0\n(\n defaultPrim = \"Root\"\n)\ndef \"Root\" (references = @./geo/part.usda@) {}\n";
+  layers.texts["/p/pkg.usdz[geo/part.usda]"] =
+      "#usda 1.0\n(\n defaultPrim = \"Part\"\n)\ndef \"Part\" { asset tex = @../tex/wood.png@ }\n";
+  layers.texts["/stage.usda"] = "#usda 1.0\ndef \"A\" (references = @./p/pkg.usdz@) {}\n";
+  ComposedStage stage = layers.compose("/stage.usda");
+  const ComposedProperty* tex = stage.prim("/A")->property("tex");
+  REQUIRE(tex);
+  CHECK(tex->valueLayer == "/p/pkg.usdz[geo/part.usda]");
+  CHECK(tex->resolvedAssets == names({"/p/pkg.usdz[tex/wood.png]"}));
+}
