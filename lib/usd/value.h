@@ -12,11 +12,13 @@
 // SDG scene uses (int32, float, half, double, and int64 below 2^53) is exact
 // in a double, and one numeric store keeps the type small. `kind` keeps the
 // USD type so that writing a layer back gives the same type name.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sdg::usd {
@@ -52,6 +54,19 @@ int componentCount(Kind kind);              // 1 for scalars, 2..4 for vectors, 
 bool isNumeric(Kind kind);
 bool isText(Kind kind);
 
+// An attribute's value type: its Kind and whether it is an array. Role
+// names map to the Kind of their C++ type ("point3f" and "color3f" are both
+// Vec3f, "frame4d" is Matrix4d); the role stays in the spec's typeName.
+struct ValueType {
+  Kind kind = Kind::Empty;
+  bool isArray = false;
+};
+// Sdf's value type names ("float3", "point3f[]", "texCoord2f", "asset",
+// "matrix4d", ...); nullopt for any other name.
+std::optional<ValueType> valueTypeForName(std::string_view typeName);
+// Every name valueTypeForName accepts, without "[]" (for did-you-mean hints).
+const std::vector<std::string>& valueTypeNames();
+
 enum class Specifier : uint8_t { Def, Over, Class };
 enum class Variability : uint8_t { Varying, Uniform };
 enum class Permission : uint8_t { Public, Private };
@@ -73,6 +88,7 @@ struct Reference {
   LayerOffset offset;
   std::shared_ptr<Dictionary> customData;  // null when none is authored
 };
+bool operator==(const Reference& a, const Reference& b);
 
 // Sdf's list op: either an explicit list, or edits to the weaker opinion's
 // list (delete, then prepend and append; `added` and `ordered` are the old
@@ -90,6 +106,7 @@ struct ListOp {
     return !isExplicit && addedItems.empty() && prependedItems.empty() && appendedItems.empty() &&
            deletedItems.empty() && orderedItems.empty();
   }
+  bool operator==(const ListOp&) const = default;
 };
 
 struct TimeSamples;
@@ -133,6 +150,8 @@ class Value {
   const std::string& asString() const;       // String, Token or AssetPath scalar
   const std::vector<std::string>& asStrings() const;
 };
+// Deep equality (the shared parts compared by content).
+bool operator==(const Value& a, const Value& b);
 
 struct TimeSamples {
   std::vector<double> times;  // ascending
@@ -141,6 +160,54 @@ struct TimeSamples {
   // before the first sample; no interpolation here — callers that need
   // linear interpolation of numbers do it themselves).
   const Value* heldAt(double time) const;
+  bool operator==(const TimeSamples&) const = default;
 };
+
+template <class T>
+std::vector<T> ListOp<T>::applyTo(const std::vector<T>& weaker) const {
+  auto contains = [](const std::vector<T>& items, const T& item) {
+    return std::find(items.begin(), items.end(), item) != items.end();
+  };
+  auto remove = [](std::vector<T>& items, const T& item) {
+    items.erase(std::remove(items.begin(), items.end(), item), items.end());
+  };
+  std::vector<T> result;
+  if (isExplicit) {
+    for (const T& item : explicitItems)
+      if (!contains(result, item)) result.push_back(item);
+    return result;
+  }
+  for (const T& item : weaker)
+    if (!contains(result, item)) result.push_back(item);
+  for (const T& item : deletedItems) remove(result, item);
+  for (const T& item : addedItems)
+    if (!contains(result, item)) result.push_back(item);
+  // Prepended items go to the front in their order, moving any copy already there.
+  std::vector<T> front;
+  for (const T& item : prependedItems)
+    if (!contains(front, item)) front.push_back(item);
+  for (const T& item : front) remove(result, item);
+  result.insert(result.begin(), front.begin(), front.end());
+  for (const T& item : appendedItems) {
+    remove(result, item);
+    result.push_back(item);
+  }
+  // The old `reorder` form: the listed items that are present take, among
+  // the positions they occupy, the order given.
+  if (!orderedItems.empty()) {
+    std::vector<size_t> slots;
+    for (size_t i = 0; i < result.size(); ++i)
+      if (contains(orderedItems, result[i])) slots.push_back(i);
+    std::vector<T> placed;
+    for (const T& item : orderedItems)
+      if (contains(result, item) && !contains(placed, item)) placed.push_back(item);
+    for (size_t i = 0; i < placed.size(); ++i) result[slots[i]] = placed[i];
+  }
+  return result;
+}
+
+extern template struct ListOp<std::string>;
+extern template struct ListOp<int64_t>;
+extern template struct ListOp<Reference>;
 
 }  // namespace sdg::usd
