@@ -44,7 +44,7 @@ const char* crateTypeName(uint8_t type) {
 }
 
 void throwCrateError(const std::string& identifier, const std::string& where, const std::string& what) {
-  throw UsdError(SourceLoc(identifier, 0, 0), identifier + ": crate " + where + ": " + what);
+  throw usdErrorAt(SourceLoc(identifier, 0, 0), "crate " + where + ": " + what);
 }
 
 CrateFile::CrateFile(std::span<const uint8_t> bytes, std::string identifier, const ReadLimits& limits)

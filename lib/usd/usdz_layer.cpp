@@ -11,7 +11,7 @@ Layer readPackagedLayer(const std::string& packagePath, const std::string& entry
   UsdzPackage package(packagePath, limits);
   std::string name = entry.empty() ? package.firstLayer() : entry;
   if (name.empty())
-    throw UsdError(SourceLoc(packagePath, 0, 0), packagePath + ": usdz package: holds no .usd, .usda or .usdc layer");
+    throw usdErrorAt(SourceLoc(packagePath, 0, 0), "usdz package: holds no .usd, .usda or .usdc layer");
   std::vector<uint8_t> bytes = package.read(name);
   const std::string identifier = packagePath + "[" + name + "]";
   Layer layer;
@@ -21,8 +21,7 @@ Layer readPackagedLayer(const std::string& packagePath, const std::string& entry
     layer = readUsdaLayer(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), identifier,
                           limits);
   } else {
-    throw UsdError(SourceLoc(identifier, 0, 0),
-                   identifier + ": neither a crate layer (\"PXR-USDC\") nor a usda layer (\"#usda\")");
+    throw usdErrorAt(SourceLoc(identifier, 0, 0), "neither a crate layer (\"PXR-USDC\") nor a usda layer (\"#usda\")");
   }
   layer.identifier = identifier;
   layer.realPath = packagePath;

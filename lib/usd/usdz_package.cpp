@@ -9,7 +9,7 @@ namespace sdg::usd {
 namespace {
 
 [[noreturn]] void packageError(const std::string& identifier, const std::string& what) {
-  throw UsdError(SourceLoc(identifier, 0, 0), identifier + ": usdz package: " + what);
+  throw usdErrorAt(SourceLoc(identifier, 0, 0), "usdz package: " + what);
 }
 
 bool hasLayerExtension(const std::string& name) {

@@ -61,9 +61,7 @@ class UsdzPackage {
   std::vector<std::string> entries_;
 };
 
-// The layer `entry` of the package at `packagePath` ("" = its root layer),
-// crate or usda told apart by the entry's first bytes. The layer's
-// identifier is "pkg.usdz[entry]", its realPath the package file.
-Layer readPackagedLayer(const std::string& packagePath, const std::string& entry, const ReadLimits& limits = {});
+// readPackagedLayer (declared in layer_io.h, defined in usdz_layer.cpp)
+// reads one layer of a package through this class.
 
 }  // namespace sdg::usd

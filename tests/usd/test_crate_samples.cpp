@@ -1,33 +1,27 @@
 // The crate reader and the package reader on real files: the .usdz packages
 // of ../shared/usd-samples (written by Apple's usdzconvert and Pixar's USD,
-// crate version 0.8.0). Hidden from test discovery ([.]); CTest runs them as
-// usd.crate_samples, which skips (exit 77) where the folder is absent.
+// crate version 0.8.0). Tagged [samples]: CTest runs them as usd.samples,
+// which skips (exit 77) where the folder is absent.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <set>
 
+#include "usd/compose.h"
 #include "usd/layer_io.h"
+#include "usd/samples_dir.h"
 #include "usd/usdz_package.h"
 
 using namespace sdg::usd;
+using sdg::usd::test::sampleFiles;
+using sdg::usd::test::samplesDir;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path samplesDir() {
-  fs::path dir = fs::path(SDG_SOURCE_DIR) / ".." / "shared" / "usd-samples";
-  if (!fs::is_directory(dir)) {
-    std::printf("SKIP: %s is absent: the USD sample files are not on this machine\n", dir.c_str());
-    std::exit(77);
-  }
-  return dir;
-}
-
-std::string package(const char* relative) { return (samplesDir() / relative).string(); }
+std::string package(const char* relative) { return (fs::path(samplesDir()) / relative).string(); }
 
 Layer readEntry(const std::string& packagePath, const std::string& entry) {
   UsdzPackage pkg(packagePath);
@@ -70,11 +64,8 @@ void checkNamespace(const Layer& layer) {
 
 }  // namespace
 
-TEST_CASE("every crate layer in every sample package reads", "[.][usd-samples]") {
-  std::vector<std::string> packages;
-  for (const auto& e : fs::recursive_directory_iterator(samplesDir()))
-    if (e.path().extension() == ".usdz") packages.push_back(e.path().string());
-  std::sort(packages.begin(), packages.end());
+TEST_CASE("every crate layer in every sample package reads", "[usd][crate][samples]") {
+  const std::vector<std::string> packages = sampleFiles({".usdz"});
   int crateLayers = 0;
   for (const auto& path : packages) {
     UsdzPackage pkg(path);
@@ -93,7 +84,7 @@ TEST_CASE("every crate layer in every sample package reads", "[.][usd-samples]")
   CHECK(crateLayers == 4);
 }
 
-TEST_CASE("BoxAnimated: meshes, materials and animated transforms", "[.][usd-samples]") {
+TEST_CASE("BoxAnimated: meshes, materials and animated transforms", "[usd][crate][samples]") {
   Layer layer = readEntry(package("test_assets/USDZ/BoxAnimated/BoxAnimated.usdz"), "BoxAnimated.imported.usdc");
   CHECK(layer.specs.size() == 41);
   CHECK(fieldOf(layer, "/", field::kDefaultPrim).strings == std::vector<std::string>{"BoxAnimated"});
@@ -151,7 +142,7 @@ TEST_CASE("BoxAnimated: meshes, materials and animated transforms", "[.][usd-sam
   CHECK(orient.timeSamples->values[1].numbers[1] == Approx(1));
 }
 
-TEST_CASE("AnimatedCube: texture asset paths resolve inside the package", "[.][usd-samples]") {
+TEST_CASE("AnimatedCube: texture asset paths resolve inside the package", "[usd][crate][samples]") {
   const std::string path = package("test_assets/USDZ/AnimatedCube/AnimatedCube.usdz");
   UsdzPackage pkg(path);
   CHECK(pkg.entries() == std::vector<std::string>{"AnimatedCube.imported.usdc", "0/AnimatedCube_BaseColor.png",
@@ -183,7 +174,7 @@ TEST_CASE("AnimatedCube: texture asset paths resolve inside the package", "[.][u
   CHECK(orient.timeSamples->values[0].numbers == std::vector<double>{1, 0, 0, 0});  // identity, real first
 }
 
-TEST_CASE("CesiumMan: skeleton animation arrays over time", "[.][usd-samples]") {
+TEST_CASE("CesiumMan: skeleton animation arrays over time", "[usd][crate][samples]") {
   Layer layer = readEntry(package("test_assets/USDZ/CesiumMan/CesiumMan.usdz"), "CesiumMan.imported.usdc");
   CHECK(layer.specs.size() == 53);
   const std::string anim = "/CesiumMan/Animations/skelAnim_0";
@@ -212,7 +203,7 @@ TEST_CASE("CesiumMan: skeleton animation arrays over time", "[.][usd-samples]") 
   CHECK(transform.numbers == std::vector<double>{1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1});
 }
 
-TEST_CASE("RoughnessTest: many meshes and materials", "[.][usd-samples]") {
+TEST_CASE("RoughnessTest: many meshes and materials", "[usd][crate][samples]") {
   const std::string path = package("test_assets/RoughnessTest/RoughnessTest.usdz");
   Layer layer = readEntry(path, "RoughnessTest.usdc");
   CHECK(layer.specs.size() == 275);
@@ -224,7 +215,7 @@ TEST_CASE("RoughnessTest: many meshes and materials", "[.][usd-samples]") {
   CHECK(pkg.read(pkg.resolve("RoughnessTest.usdc", "0/roughness.tga")).size() == 196652);
 }
 
-TEST_CASE("sample crate layers cut short or with flipped bits fail cleanly", "[.][usd-samples]") {
+TEST_CASE("sample crate layers cut short or with flipped bits fail cleanly", "[usd][crate][samples]") {
   const std::string path = package("test_assets/USDZ/BoxAnimated/BoxAnimated.usdz");
   UsdzPackage pkg(path);
   const auto bytes = pkg.read("BoxAnimated.imported.usdc");
@@ -252,4 +243,47 @@ TEST_CASE("sample crate layers cut short or with flipped bits fail cleanly", "[.
     parsed += readsOrFailsCleanly(flipped);
   }
   CHECK(parsed > 0);
+}
+
+TEST_CASE("readLayerFile on sample packages and their entries", "[usd][usdz][samples]") {
+  const std::string cube = package("test_assets/USDZ/AnimatedCube/AnimatedCube.usdz");
+  Layer root = readLayerFile(cube);
+  CHECK(root.format == "usdc");
+  CHECK(root.identifier == cube + "[AnimatedCube.imported.usdc]");
+  CHECK(root.realPath == cube);
+  CHECK(root.specs.size() == 42);
+  CHECK(readLayerFile(cube + "[AnimatedCube.imported.usdc]").specs.size() == 42);
+  CHECK_THROWS_WITH(readLayerFile(cube + "[0/AnimatedCube_BaseColor.png]"),
+                    cube + "[0/AnimatedCube_BaseColor.png]: neither a crate layer (\"PXR-USDC\") nor a usda layer "
+                           "(\"#usda\")");
+  // A package whose root layer is text.
+  const std::string normals = package("test_assets/NormalsTextureBiasAndScale/NormalsTextureBiasAndScale.usdz");
+  Layer text = readLayerFile(normals);
+  CHECK(text.format == "usda");
+  CHECK(text.identifier == normals + "[NormalsTextureBiasAndScale.usda]");
+  CHECK(text.specs.size() > 10);
+}
+
+TEST_CASE("every sample package composes, its textures resolved inside it", "[usd][usdz][samples]") {
+  LayerReader reader = [](const std::string& identifier) { return readLayerFile(identifier); };
+  size_t textures = 0;
+  for (const std::string& path : sampleFiles({".usdz"})) {
+    INFO(path);
+    ComposedStage stage = composeStage(path, reader);
+    CHECK(stage.prims.size() > 5);
+    CHECK_FALSE(stage.defaultPrim.empty());
+    UsdzPackage pkg(path);
+    for (const ComposedPrim& prim : stage.prims) {
+      for (const ComposedProperty& property : prim.properties) {
+        for (const std::string& asset : property.resolvedAssets) {
+          INFO(prim.path << "." << property.name << " = " << asset);
+          auto [packagePath, entry] = splitPackagePath(asset);
+          CHECK(packagePath == path);
+          CHECK(pkg.contains(entry));
+          ++textures;
+        }
+      }
+    }
+  }
+  CHECK(textures >= 10);
 }

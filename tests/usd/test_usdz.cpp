@@ -196,3 +196,26 @@ TEST_CASE("usdz: broken archives fail cleanly", "[usd][usdz]") {
   UsdzPackage p(corruptPath.string());
   CHECK_THAT(errorOf([&] { p.read("a.usdc"); }), Catch::Contains("entry 'a.usdc': cannot read it: CRC error"));
 }
+
+TEST_CASE("usdz: readPackagedLayer and readLayerFile on packages", "[usd][usdz]") {
+  auto inner = fileBytes(writeZip("inner2.usdz", {{"model.usdc", crateLayer("tex/wood.png")}}));
+  auto path = writeZip("layers.usdz", {{"root.usda", text("#usda 1.0\n(\n    defaultPrim = \"Root\"\n)\n\ndef Xform \"Root\"\n{\n}\n")},
+                                       {"sub/inner.usdz", inner},
+                                       {"notes.txt", text("not a layer")}});
+  Layer root = readPackagedLayer(path.string(), "");
+  CHECK(root.format == "usda");
+  CHECK(root.identifier == path.string() + "[root.usda]");
+  CHECK(root.realPath == path.string());
+  CHECK(root.spec("/Root"));
+  Layer nested = readPackagedLayer(path.string(), "sub/inner.usdz[model.usdc]");
+  CHECK(nested.format == "usdc");
+  CHECK(nested.identifier == path.string() + "[sub/inner.usdz[model.usdc]]");
+  CHECK(nested.spec("/Model.tex"));
+  CHECK(readLayerFile(path.string()).identifier == root.identifier);
+  CHECK(readLayerFile(path.string() + "[sub/inner.usdz[model.usdc]]").format == "usdc");
+  CHECK(errorOf([&] { readPackagedLayer(path.string(), "notes.txt"); }) ==
+        path.string() + "[notes.txt]: neither a crate layer (\"PXR-USDC\") nor a usda layer (\"#usda\")");
+  auto empty = writeZip("empty.usdz", {{"readme.txt", text("x")}});
+  CHECK(errorOf([&] { readPackagedLayer(empty.string(), ""); }) ==
+        empty.string() + ": usdz package: holds no .usd, .usda or .usdc layer");
+}
