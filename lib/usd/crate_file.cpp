@@ -143,10 +143,14 @@ const CrateSection& CrateFile::section(const char* name) const {
   throw CodingError(std::string("the ") + name + " section is missing");
 }
 
+ByteCursor CrateFile::enterSection(const char* name) {
+  where_ = std::string(name) + " section";
+  const auto& s = section(name);
+  return ByteCursor(bytes_, s.start, s.start + s.size);
+}
+
 void CrateFile::readTokens() {
-  where_ = "TOKENS section";
-  const auto& s = section("TOKENS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("TOKENS");
   auto count = in.read<uint64_t>("token count");
   auto size = in.read<uint64_t>("token bytes");
   auto compressedSize = in.read<uint64_t>("compressed token bytes");
@@ -177,9 +181,7 @@ void CrateFile::readTokens() {
 }
 
 void CrateFile::readStrings() {
-  where_ = "STRINGS section";
-  const auto& s = section("STRINGS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("STRINGS");
   auto count = in.readCount("string count", 4);
   strings_.resize(count);
   for (auto& index : strings_) {
@@ -191,9 +193,7 @@ void CrateFile::readStrings() {
 }
 
 void CrateFile::readFields() {
-  where_ = "FIELDS section";
-  const auto& s = section("FIELDS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("FIELDS");
   auto count = in.read<uint64_t>("field count");
   auto tokens = readCompressedInts<uint32_t>(in, count, limits_, "field names");
   auto repsSize = in.read<uint64_t>("value reps size");
@@ -218,9 +218,7 @@ void CrateFile::readFields() {
 }
 
 void CrateFile::readFieldSets() {
-  where_ = "FIELDSETS section";
-  const auto& s = section("FIELDSETS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("FIELDSETS");
   auto count = in.read<uint64_t>("field set count");
   fieldSets_ = readCompressedInts<uint32_t>(in, count, limits_, "field sets");
   if (!fieldSets_.empty() && fieldSets_.back() != kFieldSetEnd)
@@ -232,9 +230,7 @@ void CrateFile::readFieldSets() {
 }
 
 void CrateFile::readPaths() {
-  where_ = "PATHS section";
-  const auto& s = section("PATHS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("PATHS");
   auto total = in.read<uint64_t>("path count");
   auto encoded = in.read<uint64_t>("encoded path count");
   // Only the empty path is left out of the tree, and a file holds it once;
@@ -320,9 +316,7 @@ void CrateFile::buildPathTree(const std::vector<uint32_t>& pathIndexes, const st
 }
 
 void CrateFile::readSpecs() {
-  where_ = "SPECS section";
-  const auto& s = section("SPECS");
-  ByteCursor in(bytes_, s.start, s.start + s.size);
+  ByteCursor in = enterSection("SPECS");
   auto count = in.read<uint64_t>("spec count");
   if (count > limits_.maxSpecs)
     throw CodingError(std::to_string(count) + " specs exceed the limit of " + std::to_string(limits_.maxSpecs));

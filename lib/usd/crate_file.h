@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "usd/crate_bytes.h"
 #include "usd/layer.h"
 
 namespace sdg::usd {
@@ -112,6 +113,7 @@ class CrateFile {
   void readBootstrap();
   void readTableOfContents();
   const CrateSection& section(const char* name) const;
+  ByteCursor enterSection(const char* name);  // a cursor over the section; errors name it
   void readTokens();
   void readStrings();
   void readFields();

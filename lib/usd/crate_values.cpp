@@ -218,6 +218,14 @@ void CrateValueReader::charge(uint64_t bytes) {
   budget_ -= bytes;
 }
 
+Value CrateValueReader::textValue(Kind kind, std::string s) {
+  charge(s.size());
+  Value v;
+  v.kind = kind;
+  v.strings.push_back(std::move(s));
+  return v;
+}
+
 ByteCursor CrateValueReader::at(uint64_t offset) {
   ByteCursor in(crate_.bytes());
   in.seek(offset);
@@ -243,13 +251,6 @@ Value CrateValueReader::unpack(ValueRep rep, uint32_t depth) {
   if (numericType(type))
     return rep.isArray() ? unpackNumericArray(rep, type) : unpackNumeric(rep, type);
 
-  auto textValue = [this](Kind kind, std::string s) {
-    charge(s.size());
-    Value v;
-    v.kind = kind;
-    v.strings.push_back(std::move(s));
-    return v;
-  };
   switch (T(type)) {
     case T::String:
       return rep.isArray() ? unpackTextArray(rep, Kind::String) : textValue(Kind::String, crate_.string(rep.payload32()));
@@ -327,13 +328,6 @@ Value CrateValueReader::unpack(ValueRep rep, uint32_t depth) {
 Value CrateValueReader::unpackOutOfLine(ValueRep rep, uint32_t depth) {
   const uint8_t type = rep.type();
   using T = CrateType;
-  auto textValue = [this](Kind kind, std::string s) {
-    charge(s.size());
-    Value v;
-    v.kind = kind;
-    v.strings.push_back(std::move(s));
-    return v;
-  };
   auto textVector = [this](Kind kind, ByteCursor& in, auto lookup) {
     Value v;
     v.kind = kind;

@@ -44,6 +44,7 @@ class CrateValueReader {
   Reference readReference(ByteCursor& in, uint32_t depth, bool isPayload);
   Value readTimeSamples(ByteCursor& in, uint32_t depth);
   uint64_t readArraySize(ByteCursor& in);
+  Value textValue(Kind kind, std::string s);
   ByteCursor at(uint64_t offset);
   void charge(uint64_t bytes);
 
