@@ -137,7 +137,7 @@ std::string indentText(int indent) { return std::string(size_t(indent) * 4, ' ')
 
 class UsdaWriter {
  public:
-  explicit UsdaWriter(const Layer& layer) : layer_(layer) { indexSpecs(); }
+  UsdaWriter(const Layer& layer, uint64_t maxBytes) : layer_(layer), maxBytes_(maxBytes) { indexSpecs(); }
   std::string write();
 
  private:
@@ -147,7 +147,15 @@ class UsdaWriter {
 
   void indexSpecs();
   [[noreturn]] void fail(const Spec& spec, const std::string& path, const std::string& what) const;
-  void line(int indent, const std::string& text) { out_ += indentText(indent) + text + "\n"; }
+  void line(int indent, const std::string& text) {
+    out_ += indentText(indent) + text + "\n";
+    checkSize(out_.size());
+  }
+  void checkSize(uint64_t size) const {
+    if (size > maxBytes_)
+      throw usdErrorAt(SourceLoc(layer_.identifier, 0, 0),
+                       "the usda text would pass " + std::to_string(maxBytes_) + " bytes");
+  }
   void comment(int indent, const std::string& key, const Value& v) {
     line(indent, "# '" + key + "' (" + (v.kind == Kind::Unsupported && !v.strings.empty() ? v.strings[0]
                                                                                           : kindName(v.kind)) +
@@ -176,6 +184,7 @@ class UsdaWriter {
   void listOpLines(int indent, const std::string& declaration, const ListOp<T>& op, Text itemsText);
 
   const Layer& layer_;
+  uint64_t maxBytes_;
   std::string out_;
   std::map<std::string, Children> children_;  // by owner path
   std::vector<std::string> skipped_;          // specs of types usda cannot hold
@@ -569,6 +578,7 @@ std::string UsdaWriter::dictionaryText(const Dictionary& d, int indent, const st
     std::string pad = indentText(indent + 1);
     if (auto type = typeNameOf(v)) {
       out += pad + *type + " " + quoted(key) + " = " + typedValue(v, indent + 1, path, spec) + "\n";
+      checkSize(out.size());
     } else {
       out += pad + "# '" + key + "' (" + kindName(v.kind) + ") is not written: usda dictionaries cannot hold it\n";
     }
@@ -608,6 +618,6 @@ std::optional<std::string> UsdaWriter::untypedValue(const Value& v, int indent, 
 
 }  // namespace
 
-std::string writeUsdaLayer(const Layer& layer) { return UsdaWriter(layer).write(); }
+std::string writeUsdaLayer(const Layer& layer, uint64_t maxBytes) { return UsdaWriter(layer, maxBytes).write(); }
 
 }  // namespace sdg::usd

@@ -14,6 +14,7 @@
 // does not know). Metadata under keys the reader does not know come back
 // typed by how they are written (numbers as double, lists of names as
 // strings), as in USD, which types metadata by its schema registry.
+#include <cstdint>
 #include <string>
 
 #include "usd/layer.h"
@@ -22,7 +23,10 @@ namespace sdg::usd {
 
 // Throws UsdError (naming the spec) for what no usda text can hold: an
 // attribute without a typeName, an asset path with a line break, an
-// internal reference with neither asset nor prim path.
-std::string writeUsdaLayer(const Layer& layer);
+// internal reference with neither asset nor prim path; and (naming the
+// layer) when the text would pass `maxBytes` — dictionaries that share
+// entries level after level (which a crate file can hold) grow as
+// 2^depth when spelled out.
+std::string writeUsdaLayer(const Layer& layer, uint64_t maxBytes = uint64_t(1) << 32);
 
 }  // namespace sdg::usd

@@ -315,3 +315,14 @@ TEST_CASE("usda writer: every sample layer round-trips, crate and text", "[usd][
   }
   CHECK(layers >= 20);
 }
+
+TEST_CASE("usda writer: text that would grow without bound stops at the limit", "[usd][usda-writer]") {
+  // Dictionaries sharing their entries level after level (as a crate file
+  // can store them): 2^40 lines if spelled out.
+  Value level = Value::dict({{"leaf", Value::scalar(Kind::Int, {1})}});
+  for (int i = 0; i < 40; ++i) level = Value::dict({{"a", level}, {"b", level}});
+  Layer layer;
+  layer.identifier = "dag.usdc";
+  layer.specs["/"] = spec(SpecType::PseudoRoot, {{field::kCustomLayerData, level}});
+  CHECK_THROWS_WITH(writeUsdaLayer(layer, 1 << 20), "dag.usdc: the usda text would pass 1048576 bytes");
+}
