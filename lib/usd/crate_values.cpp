@@ -433,7 +433,7 @@ Value CrateValueReader::unpackOutOfLine(ValueRep rep, uint32_t depth) {
     case T::Value: return readVtValue(in, depth + 1);
     case T::PathExpression: {
       if (rep.isArray()) {
-        auto count = readArraySize(in);
+        auto count = rep.payload() == 0 ? 0 : readArraySize(in);  // offset 0: an empty array
         if (count > in.remaining() / 4) throw CodingError("path expression array overruns the file");
         std::vector<std::string> texts;
         for (uint64_t i = 0; i < count; ++i) {

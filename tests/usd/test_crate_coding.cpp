@@ -50,13 +50,14 @@ TEMPLATE_TEST_CASE("integer coding round-trips every width class", "[usd][crate]
                    uint64_t) {
   std::mt19937_64 rng(7);
   std::vector<TestType> values;
+  using U = std::make_unsigned_t<TestType>;  // wrapping arithmetic, as the coding's
   TestType v = 0;
   for (int i = 0; i < 1000; ++i) {
     switch (i % 5) {
-      case 0: v = TestType(v + 1); break;                 // the common difference
-      case 1: v = TestType(v + TestType(rng() % 100)); break;  // small
-      case 2: v = TestType(v - TestType(rng() % 20000)); break;  // medium
-      case 3: v = TestType(rng()); break;                 // full width
+      case 0: v = TestType(U(v) + 1); break;                 // the common difference
+      case 1: v = TestType(U(v) + U(rng() % 100)); break;    // small
+      case 2: v = TestType(U(v) - U(rng() % 20000)); break;  // medium
+      case 3: v = TestType(rng()); break;                    // full width
       default: v = std::numeric_limits<TestType>::min(); break;
     }
     values.push_back(v);
