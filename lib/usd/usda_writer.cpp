@@ -133,6 +133,17 @@ std::string nameListText(const std::vector<std::string>& names) {
 
 std::string indentText(int indent) { return std::string(size_t(indent) * 4, ' '); }
 
+// "custom " for a custom property, and `word` when its variability is
+// `stated` (the one that is not the property kind's fallback).
+std::string qualifiers(const Spec& spec, Variability stated, const char* word) {
+  std::string out;
+  if (const Value* custom = spec.field(field::kCustom); custom && custom->kind == Kind::Bool && custom->numbers.at(0) != 0)
+    out += "custom ";
+  if (const Value* v = spec.field(field::kVariability); v && v->kind == Kind::Variability && v->enumValue == int(stated))
+    out += word;
+  return out;
+}
+
 // ---- the writer ---------------------------------------------------------------------
 
 class UsdaWriter {
@@ -429,13 +440,7 @@ void UsdaWriter::attribute(const std::string& path, const std::string& name, con
   const Value* typeName = spec.field(field::kTypeName);
   if (!typeName || typeName->kind != Kind::Token || typeName->strings.empty() || typeName->strings[0].empty())
     fail(spec, path, "the attribute has no typeName");
-  std::string declaration;
-  if (const Value* custom = spec.field(field::kCustom); custom && custom->kind == Kind::Bool && custom->numbers[0] != 0)
-    declaration += "custom ";
-  if (const Value* v = spec.field(field::kVariability); v && v->kind == Kind::Variability &&
-                                                      v->enumValue == int(Variability::Uniform))
-    declaration += "uniform ";
-  declaration += typeName->strings[0] + " " + name;
+  std::string declaration = qualifiers(spec, Variability::Uniform, "uniform ") + typeName->strings[0] + " " + name;
 
   std::string head = declaration;
   if (const Value* v = spec.field(field::kDefault)) {
@@ -465,13 +470,7 @@ void UsdaWriter::attribute(const std::string& path, const std::string& name, con
 }
 
 void UsdaWriter::relationship(const std::string& path, const std::string& name, const Spec& spec, int indent) {
-  std::string declaration;
-  if (const Value* custom = spec.field(field::kCustom); custom && custom->kind == Kind::Bool && custom->numbers[0] != 0)
-    declaration += "custom ";
-  if (const Value* v = spec.field(field::kVariability); v && v->kind == Kind::Variability &&
-                                                      v->enumValue == int(Variability::Varying))
-    declaration += "varying ";
-  declaration += "rel " + name;
+  std::string declaration = qualifiers(spec, Variability::Varying, "varying ") + "rel " + name;
   const Value* targets = spec.field(field::kTargetPaths);
   const ListOp<std::string>* op = targets && targets->kind == Kind::PathListOp ? targets->textListOp.get() : nullptr;
   std::string head = declaration;
