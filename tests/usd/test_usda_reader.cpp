@@ -406,3 +406,17 @@ def "A" {
   CHECK(fieldOf(mixed, "/A.i", "default").numbers == std::vector<double>{1, 2, 3, 4});
   CHECK(fieldOf(mixed, "/A.next", "default").asDouble() == 1);
 }
+
+TEST_CASE("usda: Windows line endings count lines the same", "[usda]") {
+  Layer layer = parse("#usda 1.0\r\n(\r\n    upAxis = \"Z\"\r\n)\r\ndef \"A\"\r\n{\r\n    float3[] p = [\r\n(1, 2, 3),\r\n(4, 5, 6)]\r\n"
+                      "    string s = \"\"\"a\r\nb\"\"\"\r\n    float x = 1\r\n}\r\n");
+  CHECK(specAt(layer, "/A").loc.str() == "test.usda:5:1");
+  CHECK(fieldOf(layer, "/A.p", "default").numbers.size() == 6);
+  CHECK(specAt(layer, "/A.x").loc.str() == "test.usda:12:5");
+  try {
+    parse("#usda 1.0\r\ndef \"A\"\r\n{\r\n    float x = \r\n}\r\n");
+    FAIL("expected an error");
+  } catch (const UsdError& e) {
+    CHECK(std::string(e.what()) == "test.usda:5:1: expected a float number, found '}'");
+  }
+}
