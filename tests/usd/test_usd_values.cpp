@@ -74,11 +74,11 @@ TEST_CASE("usd values: list ops apply as Sdf's ApplyOperations", "[usda]") {
   ListOp<Reference> refs;
   refs.deletedItems = {Reference{"a.usda", "/A", {}, nullptr}};
   CHECK(refs.applyTo({Reference{"a.usda", "/A", {}, nullptr}, Reference{"b.usda", "", {}, nullptr}}).size() == 1);
-  // A million items apply in linear time.
+  // 200,000 items apply in linear time (quadratic would take minutes).
   ListOp<std::string> big;
-  for (int i = 0; i < 1000000; ++i) big.prependedItems.push_back(std::to_string(i));
+  for (int i = 0; i < 200000; ++i) big.prependedItems.push_back(std::to_string(i));
   big.deletedItems = items({"7"});
-  CHECK(big.applyTo(big.prependedItems).size() == 1000000);
+  CHECK(big.applyTo(big.prependedItems).size() == 200000);  // "7" deleted from the weaker list, prepended again
 }
 
 TEST_CASE("usd values: time samples held at a time", "[usda]") {
