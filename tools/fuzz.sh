@@ -8,8 +8,17 @@ set -euo pipefail
 seconds=${FUZZ_SECONDS:-60}
 build=build/fuzz
 cmake --preset fuzz >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_crate fuzz_usdz
-mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/corpus/crate" "$build/corpus/usdz" "$build/artifacts"
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz
+mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/corpus/usda" "$build/corpus/crate" "$build/corpus/usdz" \
+  "$build/artifacts"
+# usda seeds: the USD sample files beside the repository, when present.
+if [[ -d ../shared/usd-samples ]]; then
+  find ../shared/usd-samples -name '*.usd*' -size -300k -exec grep -l '^#usda' {} + | while read -r f; do
+    cp "$f" "$build/corpus/usda/$(echo "${f#../}" | tr / _)"
+  done
+fi
+printf 'def Xform "A" (variants = {string v = "x"}\n prepend variantSets = "v")\n{\n variantSet "v" = { "x" { double a = 1 } }\n}\n' \
+  > "$build/corpus/usda/seed1"
 find scenes tests/data -name '*.yaml' -exec cp {} "$build/corpus/scene/" \;
 cp tests/data/fuzz_regressions/* "$build/corpus/scene/"
 printf '%s\n' 'render.resolution=[640,480]' '/World/Box.size=3' '/World/Box.xformOp:translate=[1,2,3]' \
@@ -35,9 +44,10 @@ fi
 # limit a test of each input rather than of the run's history.
 export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}allocator_release_to_os_interval_ms=100:quarantine_size_mb=32
 status=0
-for harness in fuzz_scene_loader fuzz_overrides fuzz_crate fuzz_usdz; do
+for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz; do
   corpus=$build/corpus/scene
   [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
+  [[ $harness == fuzz_usda ]] && corpus=$build/corpus/usda
   max_len=65536
   [[ $harness == fuzz_crate ]] && corpus=$build/corpus/crate max_len=300000
   [[ $harness == fuzz_usdz ]] && corpus=$build/corpus/usdz max_len=300000

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <set>
+#include <unordered_set>
 
 #include "usd/compose_internal.h"
 #include "usd/sdf_path.h"
@@ -128,10 +129,11 @@ std::vector<std::string> contributingLayers(const std::vector<Opinion>& opinions
 std::vector<std::string> composeNames(const std::vector<Opinion>& opinions, const char* namesField,
                                       const char* orderField) {
   std::vector<std::string> names;
+  std::unordered_set<std::string> seen;
   for (auto it = opinions.rbegin(); it != opinions.rend(); ++it) {
     if (const Value* v = it->spec->field(namesField))
       for (const std::string& name : v->strings)
-        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        if (seen.insert(name).second) names.push_back(name);
     if (const Value* order = it->spec->field(orderField)) {
       ListOp<std::string> op;
       op.orderedItems = order->strings;

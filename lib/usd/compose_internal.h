@@ -145,6 +145,10 @@ struct SourcedItem {
   size_t layerIndex;
   bool operator==(const SourcedItem& o) const { return item == o.item; }
 };
+template <class T>
+auto listOpKey(const SourcedItem<T>& sourced) {
+  return sdg::usd::listOpKey(sourced.item);
+}
 std::vector<SourcedItem<std::string>> composeTextListOp(const LayerStack& stack, const std::string& path,
                                                         const char* field);
 std::vector<SourcedItem<Reference>> composeReferenceListOp(const LayerStack& stack, const std::string& path,

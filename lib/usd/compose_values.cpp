@@ -30,46 +30,48 @@ ListOp<SourcedItem<T>> sourced(const ListOp<T>& op, size_t layerIndex) {
   return out;
 }
 
-}  // namespace
-
-std::vector<SourcedItem<std::string>> composeTextListOp(const LayerStack& stack, const std::string& path,
-                                                        const char* fieldName) {
-  std::vector<SourcedItem<std::string>> result;
+// A list field composed over a layer stack, weakest layer first; `asListOp`
+// gives a layer's value as a list op (null when the field holds none).
+template <class T, class AsListOp>
+std::vector<SourcedItem<T>> composeOverStack(const LayerStack& stack, const std::string& path, const char* fieldName,
+                                             AsListOp asListOp) {
+  std::vector<SourcedItem<T>> result;
   for (size_t i = stack.layers.size(); i-- > 0;) {
     const Spec* spec = stack.layers[i]->spec(path);
-    if (!spec) continue;
-    const Value* v = spec->field(fieldName);
+    const Value* v = spec ? spec->field(fieldName) : nullptr;
     if (!v) continue;
-    if (v->textListOp) {
-      result = sourced(*v->textListOp, i).applyTo(result);
-    } else if (v->kind == Kind::PathVector || v->kind == Kind::TokenVector || v->kind == Kind::StringVector) {
-      ListOp<std::string> op;  // a plain vector: an explicit list
-      op.isExplicit = true;
-      op.explicitItems = v->strings;
-      result = sourced(op, i).applyTo(result);
-    }
+    if (std::optional<ListOp<T>> op = asListOp(*v)) result = sourced(*op, i).applyTo(result);
   }
   return result;
 }
 
+template <class T>
+ListOp<T> explicitList(std::vector<T> items) {
+  ListOp<T> op;
+  op.isExplicit = true;
+  op.explicitItems = std::move(items);
+  return op;
+}
+
+}  // namespace
+
+std::vector<SourcedItem<std::string>> composeTextListOp(const LayerStack& stack, const std::string& path,
+                                                        const char* fieldName) {
+  return composeOverStack<std::string>(stack, path, fieldName, [](const Value& v) -> std::optional<ListOp<std::string>> {
+    if (v.textListOp) return *v.textListOp;
+    if (v.kind == Kind::PathVector || v.kind == Kind::TokenVector || v.kind == Kind::StringVector)
+      return explicitList(v.strings);  // a plain vector: an explicit list
+    return std::nullopt;
+  });
+}
+
 std::vector<SourcedItem<Reference>> composeReferenceListOp(const LayerStack& stack, const std::string& path,
                                                            const char* fieldName) {
-  std::vector<SourcedItem<Reference>> result;
-  for (size_t i = stack.layers.size(); i-- > 0;) {
-    const Spec* spec = stack.layers[i]->spec(path);
-    if (!spec) continue;
-    const Value* v = spec->field(fieldName);
-    if (!v) continue;
-    if (v->referenceListOp) {
-      result = sourced(*v->referenceListOp, i).applyTo(result);
-    } else if (v->references) {  // a single reference or payload (crate 0.8's payload field)
-      ListOp<Reference> op;
-      op.isExplicit = true;
-      op.explicitItems = *v->references;
-      result = sourced(op, i).applyTo(result);
-    }
-  }
-  return result;
+  return composeOverStack<Reference>(stack, path, fieldName, [](const Value& v) -> std::optional<ListOp<Reference>> {
+    if (v.referenceListOp) return *v.referenceListOp;
+    if (v.references) return explicitList(*v.references);  // a single reference or payload (crate 0.8's payload field)
+    return std::nullopt;
+  });
 }
 
 namespace {

@@ -2,6 +2,9 @@
 
 namespace sdg::usd::path {
 
+static bool identStart(unsigned char c) { return c == '_' || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c >= 0x80; }
+static bool identChar(unsigned char c) { return identStart(c) || (c >= '0' && c <= '9'); }
+
 std::string child(std::string_view parent, std::string_view name) {
   std::string out(parent);
   if (out != "/" && !out.empty() && out.back() != '}') out += '/';
@@ -134,29 +137,27 @@ std::string makeAbsolute(std::string_view anchor, std::string_view p) {
   if (!p.empty() && p[0] == '/') return std::string(p);
   std::string base(anchor);
   size_t i = 0;
-  while (i < p.size()) {
-    if (p.substr(i, 2) == ".." && (i + 2 == p.size() || p[i + 2] == '/' || p[i + 2] == '.')) {
-      if (base == "/") return "";
-      base = parent(base);
-      i += 2;
-      if (i < p.size() && p[i] == '/') ++i;
-      continue;
+  while (p.substr(i, 2) == ".." && (i + 2 == p.size() || p[i + 2] == '/' || p[i + 2] == '.')) {
+    if (base == "/") return "";
+    // Up one prim, in place: cut at the last separator.
+    size_t cut = base.find_last_of("/}");
+    if (cut == std::string::npos) return "";
+    if (base[cut] == '}') {
+      size_t open = base.rfind('{', cut);
+      base.resize(open == std::string::npos ? cut : open);
+    } else {
+      base.resize(cut == 0 ? 1 : cut);
     }
-    if (p[i] == '.') {  // ".x": a property of the anchor
-      return base + std::string(p.substr(i));
-    }
-    size_t end = p.find_first_of("/.[", i);
-    if (end == std::string_view::npos) end = p.size();
-    base = child(base, p.substr(i, end - i));
-    i = end;
+    i += 2;
     if (i < p.size() && p[i] == '/') ++i;
-    if (i < p.size() && p[i] == '.' && p.substr(i, 2) != "..") return base + std::string(p.substr(i));
   }
+  std::string_view rest = p.substr(i);
+  if (rest.empty()) return base;
+  if (rest[0] != '.' && base != "/" && base.back() != '}') base += '/';
+  base += rest;
   return base;
 }
 
-static bool identStart(unsigned char c) { return c == '_' || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c >= 0x80; }
-static bool identChar(unsigned char c) { return identStart(c) || (c >= '0' && c <= '9'); }
 
 bool isIdentifier(std::string_view name) {
   if (name.empty() || !identStart(static_cast<unsigned char>(name[0]))) return false;
@@ -174,6 +175,59 @@ bool isNamespacedIdentifier(std::string_view name) {
     if (colon == std::string_view::npos) return true;
     start = colon + 1;
   }
+}
+
+bool isValidPath(std::string_view p) {
+  if (p.empty()) return false;
+  size_t i = 0;
+  bool absolute = p[0] == '/';
+  if (absolute) {
+    if (p.size() == 1) return true;
+    i = 1;
+  } else {
+    while (p.substr(i, 2) == "..") {  // leading "../" steps
+      i += 2;
+      if (i == p.size()) return true;
+      if (p[i] == '.') break;  // "..": a property of the parent
+      if (p[i] != '/') return false;
+      ++i;
+    }
+  }
+  // Prim names, each perhaps followed by variant selections.
+  while (i < p.size() && p[i] != '.') {
+    size_t end = i;
+    while (end < p.size() && identChar(static_cast<unsigned char>(p[end]))) ++end;
+    if (end == i || !identStart(static_cast<unsigned char>(p[i]))) return false;
+    i = end;
+    while (i < p.size() && p[i] == '{') {
+      size_t close = p.find('}', i);
+      if (close == std::string_view::npos || p.substr(i, close - i).find('=') == std::string_view::npos) return false;
+      i = close + 1;
+    }
+    if (i < p.size() && p[i] == '/') {
+      if (++i == p.size()) return false;
+    } else if (i < p.size() && p[i] != '.' && p[i - 1] != '}') {
+      return false;
+    }
+  }
+  if (i == p.size()) return true;
+  // A property, perhaps with one target path and a name after it.
+  size_t end = ++i;
+  while (end < p.size() && (identChar(static_cast<unsigned char>(p[end])) || p[end] == ':')) ++end;
+  if (!isNamespacedIdentifier(p.substr(i, end - i))) return false;
+  i = end;
+  if (i < p.size() && p[i] == '[') {
+    if (p.back() == ']') return p.size() - i > 2 && p.substr(i + 1, p.size() - i - 2).find('[') == std::string_view::npos &&
+                                isValidPath(p.substr(i + 1, p.size() - i - 2));
+    size_t close = p.find(']', i);
+    if (close == std::string_view::npos) return false;
+    std::string_view target = p.substr(i + 1, close - i - 1);
+    if (target.find('[') != std::string_view::npos || !isValidPath(target)) return false;
+    i = close + 1;
+    if (i == p.size() || p[i] != '.') return false;
+    return isNamespacedIdentifier(p.substr(i + 1));
+  }
+  return i == p.size();
 }
 
 bool isAbsolutePrimPath(std::string_view path) {

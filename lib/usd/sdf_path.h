@@ -39,8 +39,13 @@ bool hasPrefix(std::string_view path, std::string_view prefix);
 // `path` with `oldPrefix` replaced by `newPrefix`; requires hasPrefix(path, oldPrefix).
 std::string replacePrefix(std::string_view path, std::string_view oldPrefix, std::string_view newPrefix);
 
+// USD path syntax: absolute ("/A/B", "/A{v=x}B", "/A.x", "/A.rel[/T]") or
+// relative ("B/C", "../B", ".x"); names are identifiers.
+bool isValidPath(std::string_view path);
+
 // Anchors a relative path ("../B", ".x", "C/D") at the prim `anchor`;
 // absolute paths come back unchanged. Returns "" when ".." climbs above "/".
+// `path` must be valid (isValidPath); linear in the lengths.
 std::string makeAbsolute(std::string_view anchor, std::string_view path);
 
 // USD identifiers: a letter or '_' (or a UTF-8 lead byte) followed by letters, digits, '_'.

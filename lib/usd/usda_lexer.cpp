@@ -75,6 +75,7 @@ Token UsdaLexer::next() {
   skipSpaceAndComments(token.newlineBefore);
   token.line = line_;
   token.column = static_cast<int>(pos_ - lineStart_) + 1;
+  token.offset = pos_;
   if (pos_ >= text_.size()) return token;  // End
   char c = text_[pos_];
   if (c == '"' || c == '\'') return lexString(token);

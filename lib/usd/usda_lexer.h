@@ -20,6 +20,7 @@ enum class TokenKind : uint8_t { End, Identifier, Number, String, Asset, Path, P
 struct Token {
   TokenKind kind = TokenKind::End;
   std::string_view text;  // identifiers, numbers: as written; strings, assets, paths: between the delimiters
+  size_t offset = 0;      // where the token starts in the lexer's text
   int line = 0;
   int column = 0;
   bool newlineBefore = false;  // a newline separates this token from the previous one
@@ -38,6 +39,24 @@ class UsdaLexer {
   Token next();
   SourceLoc locOf(const Token& token) const { return SourceLoc(file_, token.line, token.column); }
   const FileName& file() const { return file_; }
+
+  // Direct access for scanners that read long runs of numbers without
+  // making tokens (usda_values.cpp): the text, and the position as a
+  // (offset, line, line start) state that can be taken at a token and restored.
+  struct State {
+    size_t pos;
+    size_t lineStart;
+    int line;
+  };
+  std::string_view text() const { return text_; }
+  static State stateAt(const Token& token) {
+    return State{token.offset, token.offset - static_cast<size_t>(token.column - 1), token.line};
+  }
+  void restore(const State& state) {
+    pos_ = state.pos;
+    lineStart_ = state.lineStart;
+    line_ = state.line;
+  }
 
  private:
   [[noreturn]] void fail(int line, int column, const std::string& message) const;

@@ -92,7 +92,7 @@ const char* describeOwner(int owner) {
 
 }  // namespace
 
-void UsdaParser::parseMetadataEntry(Spec& spec, const std::string& anchor, Owner owner) {
+void UsdaParser::parseMetadataEntry(Spec& spec, Owner owner) {
   if (tok_.kind == TokenKind::String) {  // a bare string: the comment
     spec.fields[field::kComment] = Value::text(Kind::String, decodeString(tok_));
     advance();
@@ -119,11 +119,11 @@ void UsdaParser::parseMetadataEntry(Spec& spec, const std::string& anchor, Owner
     onlyOn(Owner::Prim);
     bool payload = key == "payload";
     Value& v = listOpField(spec, key, payload ? Kind::PayloadListOp : Kind::ReferenceListOp);
-    setListOpItems(*v.referenceListOp, listOp, parseReferenceList(anchor, payload));
+    setListOpItems(*v.referenceListOp, listOp, parseReferenceList(payload));
   } else if (key == "inherits" || key == "specializes") {
     onlyOn(Owner::Prim);
     Value& v = listOpField(spec, key == "inherits" ? field::kInheritPaths : field::kSpecializes, Kind::PathListOp);
-    setListOpItems(*v.textListOp, listOp, parsePathList(anchor, true, true));
+    setListOpItems(*v.textListOp, listOp, parsePathList(true, true));
   } else if (key == "variantSets") {
     onlyOn(Owner::Prim);
     Value& v = listOpField(spec, field::kVariantSetNames, Kind::StringListOp);
@@ -145,7 +145,7 @@ void UsdaParser::parseMetadataEntry(Spec& spec, const std::string& anchor, Owner
     parseSubLayers(spec);
   } else if (key == "relocates") {
     noListOp();
-    spec.fields[field::kRelocates] = parseRelocates(anchor);
+    spec.fields[field::kRelocates] = parseRelocates();
   } else if (key == "prefixSubstitutions" || key == "suffixSubstitutions") {
     noListOp();
     spec.fields[key] = parseStringDictionary();
@@ -186,7 +186,7 @@ void UsdaParser::parseMetadataEntry(Spec& spec, const std::string& anchor, Owner
       setListOpItems(*v.intListOp, listOp, std::move(items));
     } else if (tok_.kind == TokenKind::Path || (tok_.is('[') && peek().kind == TokenKind::Path)) {
       Value& v = listOpField(spec, key, Kind::PathListOp);
-      setListOpItems(*v.textListOp, listOp, parsePathList(anchor, true, false));
+      setListOpItems(*v.textListOp, listOp, parsePathList(true, false));
     } else {
       bool strings = known != knownMetadata().end() && known->second == MetaType::StringListOp;
       Value& v = listOpField(spec, key, strings ? Kind::StringListOp : Kind::TokenListOp);
@@ -277,7 +277,7 @@ Value UsdaParser::parseGenericValue() {
     if (first.kind == TokenKind::String) return parseTypedValue({Kind::String, true}, "string[]");
     if (first.kind == TokenKind::Asset) return parseTypedValue({Kind::AssetPath, true}, "asset[]");
     if (first.kind == TokenKind::Number) return parseTypedValue({Kind::Double, true}, "double[]");
-    if (first.kind == TokenKind::Path) return Value::textArray(Kind::PathVector, parsePathList("/", false, false));
+    if (first.kind == TokenKind::Path) return Value::textArray(Kind::PathVector, parsePathList(false, false));
     if (first.isWord("true") || first.isWord("false")) return parseTypedValue({Kind::Bool, true}, "bool[]");
     advance();
     expected("strings, numbers, asset paths or paths in the untyped list");

@@ -41,8 +41,8 @@ class UsdaParser {
 
   // ---- structure (usda_reader.cpp)
   Spec& newSpec(const std::string& path, SpecType type, const Token& at);
-  void parseMetadataBlock(Spec& spec, const std::string& anchor, Owner owner);
-  void parseMetadataEntry(Spec& spec, const std::string& anchor, Owner owner);
+  void parseMetadataBlock(Spec& spec, Owner owner);
+  void parseMetadataEntry(Spec& spec, Owner owner);
   void parsePrim(const std::string& parentPath, std::vector<std::string>& siblings);
   void parseContents(const std::string& primPath, Spec& spec);
   void parseVariantSet(const std::string& primPath, std::vector<std::string>& setNames);
@@ -58,18 +58,19 @@ class UsdaParser {
   Value parseTypedValue(ValueType type, const std::string& typeName);
   void parseElement(Kind kind, std::vector<double>& numbers, std::vector<std::string>& strings);
   double parseNumber(Kind kind);
+  bool scanNumberArray(Kind kind, std::vector<double>& numbers, uint64_t& count);
   Value parseTimeSamples(ValueType type, const std::string& typeName);
   Value parseTypedDictionary();
   Value parseMetadataValue(const std::string& key, const Token& keyToken);
   Value parseGenericValue();
-  std::vector<std::string> parsePathList(const std::string& anchor, bool allowNone, bool primPathsOnly);
+  std::vector<std::string> parsePathList(bool allowNone, bool primPathsOnly);
   std::vector<std::string> parseNameList();
-  std::vector<Reference> parseReferenceList(const std::string& anchor, bool payload);
+  std::vector<Reference> parseReferenceList(bool payload);
   LayerOffset parseLayerOffsetEntries(Reference* reference);
   void parseSubLayers(Spec& pseudoRoot);
   Value parseStringDictionary();
-  Value parseRelocates(const std::string& anchor);
-  std::string parsePath(const std::string& anchor, bool primPathOnly);
+  Value parseRelocates();
+  std::string parsePath(bool primPathOnly);
 
   UsdaLexer lexer_;
   Token tok_;
@@ -79,6 +80,9 @@ class UsdaParser {
   ReadLimits limits_;
   FileName file_;
   uint32_t nesting_ = 0;
+  // The prim that relative paths are anchored at (variant selections
+  // stripped), computed once per prim: paths in a long list reuse it.
+  std::string anchor_ = "/";
 };
 
 // Counts one nesting level for its lifetime; throws past the limit.

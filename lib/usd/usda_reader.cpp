@@ -129,7 +129,7 @@ Layer UsdaParser::parse() {
   start.line = 1;
   start.column = 1;
   Spec& root = newSpec("/", SpecType::PseudoRoot, start);
-  if (tok_.is('(')) parseMetadataBlock(root, "/", Owner::Layer);
+  if (tok_.is('(')) parseMetadataBlock(root, Owner::Layer);
   std::vector<std::string> rootPrims;
   while (tok_.kind != TokenKind::End) {
     if (tok_.isWord("reorder") && peek().isWord("rootPrims")) {
@@ -156,12 +156,12 @@ Spec& UsdaParser::newSpec(const std::string& path, SpecType type, const Token& a
   return spec;
 }
 
-void UsdaParser::parseMetadataBlock(Spec& spec, const std::string& anchor, Owner owner) {
+void UsdaParser::parseMetadataBlock(Spec& spec, Owner owner) {
   NestingGuard guard(*this, "metadata");
   advance();  // '('
   while (!tok_.is(')')) {
     if (tok_.kind == TokenKind::End) expected("')' to close the metadata");
-    parseMetadataEntry(spec, anchor, owner);
+    parseMetadataEntry(spec, owner);
     endStatement(')', "the metadata entry");
   }
   advance();
@@ -193,10 +193,13 @@ void UsdaParser::parsePrim(const std::string& parentPath, std::vector<std::strin
   siblings.push_back(name);
   spec.fields[field::kSpecifier] = Value::specifier(specifier);
   if (!typeName.empty()) spec.fields[field::kTypeName] = Value::text(Kind::Token, typeName);
-  if (tok_.is('(')) parseMetadataBlock(spec, primPath, Owner::Prim);
+  std::string parentAnchor = std::move(anchor_);
+  anchor_ = path::stripVariants(primPath);
+  if (tok_.is('(')) parseMetadataBlock(spec, Owner::Prim);
   expectPunct('{', "to open the prim's contents");
   parseContents(primPath, spec);
   advance();  // '}'
+  anchor_ = std::move(parentAnchor);
   endStatement('}', "the prim");
 }
 
@@ -258,7 +261,7 @@ void UsdaParser::parseVariantSet(const std::string& primPath, std::vector<std::s
     if (layer_.spec(variantPath)) fail(variantToken, "duplicate variant '" + variantName + "' in set '" + setName + "'");
     Spec& variantSpec = newSpec(variantPath, SpecType::Variant, variantToken);
     variants.push_back(variantName);
-    if (tok_.is('(')) parseMetadataBlock(variantSpec, variantPath, Owner::Prim);
+    if (tok_.is('(')) parseMetadataBlock(variantSpec, Owner::Prim);
     expectPunct('{', "to open the variant's contents");
     parseContents(variantPath, variantSpec);
     advance();
@@ -322,7 +325,7 @@ void UsdaParser::parseRelationship(const std::string& primPath, const std::strin
   };
   if (tok_.is('[')) {  // rel name[</target>]: one target, the old form
     advance();
-    std::string target = parsePath(primPath, false);
+    std::string target = parsePath(false);
     expectPunct(']', "after the relationship target");
     auto& op = targets();
     op.isExplicit = op.isExplicit || listOp.empty();
@@ -334,7 +337,7 @@ void UsdaParser::parseRelationship(const std::string& primPath, const std::strin
     if (tok_.isWord("default")) {
       advance();
       expectPunct('=', "after '.default'");
-      spec.fields[field::kDefault] = Value::textArray(Kind::PathVector, {parsePath(primPath, false)});
+      spec.fields[field::kDefault] = Value::textArray(Kind::PathVector, {parsePath(false)});
       return;
     }
     if (tok_.isWord("timeSamples")) fail(tok_, "time-sampled relationships are not supported");
@@ -342,11 +345,11 @@ void UsdaParser::parseRelationship(const std::string& primPath, const std::strin
   }
   if (tok_.is('=')) {
     advance();
-    setListOpItems(targets(), listOp, parsePathList(primPath, true, false));
+    setListOpItems(targets(), listOp, parsePathList(true, false));
   } else if (!listOp.empty()) {
     expected("'=' and the targets after '" + listOp + " rel " + name + "'");
   }
-  if (tok_.is('(')) parseMetadataBlock(spec, primPath, Owner::Relationship);
+  if (tok_.is('(')) parseMetadataBlock(spec, Owner::Relationship);
 }
 
 void UsdaParser::parseAttribute(const std::string& primPath, const std::string& listOp, bool custom,
@@ -398,7 +401,7 @@ void UsdaParser::parseAttribute(const std::string& primPath, const std::string& 
         v.kind = Kind::PathListOp;
         v.textListOp = std::make_shared<ListOp<std::string>>();
       }
-      setListOpItems(*v.textListOp, listOp, parsePathList(primPath, true, false));
+      setListOpItems(*v.textListOp, listOp, parsePathList(true, false));
       return;
     }
     if (!listOp.empty()) fail(start, "'" + listOp + "' applies to connections ('.connect') only");
@@ -424,7 +427,7 @@ void UsdaParser::parseAttribute(const std::string& primPath, const std::string& 
       setOnce(field::kDefault, parseTypedValue(*type, typeName), valueToken);
     }
   }
-  if (tok_.is('(')) parseMetadataBlock(spec, primPath, Owner::Attribute);
+  if (tok_.is('(')) parseMetadataBlock(spec, Owner::Attribute);
 }
 
 // ---- entry point ---------------------------------------------------------------

@@ -58,6 +58,22 @@ std::optional<IntRange> integerRange(Kind kind) {
   }
 }
 
+// A number read for a component of `kind`: integers must be whole and in
+// range; float and half values take their type's precision. False when the
+// number does not fit (the caller reports it).
+bool fitNumber(Kind kind, double& value) {
+  if (kind == Kind::Bool) {
+    value = value != 0 ? 1 : 0;
+  } else if (auto range = integerRange(kind)) {
+    return value == std::floor(value) && value >= range->min && value <= range->max;
+  } else if (kind == Kind::Float) {
+    value = static_cast<double>(static_cast<float>(value));
+  } else if (kind == Kind::Half) {
+    value = roundToHalf(value);
+  }
+  return true;
+}
+
 }  // namespace
 
 double UsdaParser::parseNumber(Kind kind) {
@@ -85,19 +101,105 @@ double UsdaParser::parseNumber(Kind kind) {
   } else {
     expected(std::string("a ") + (kind == Kind::Bool ? "bool (true, false, 1 or 0)" : std::string(kindName(kind)) + " number"));
   }
-  if (kind == Kind::Bool) {
-    value = value != 0 ? 1 : 0;
-  } else if (auto range = integerRange(kind)) {
-    if (value != std::floor(value) || value < range->min || value > range->max)
-      fail(tok_, "expected an " + std::string(kindName(kind)) + ", found " + describe(tok_) +
-                     (value != std::floor(value) ? "" : " (out of range)"));
-  } else if (kind == Kind::Float) {
-    value = static_cast<double>(static_cast<float>(value));
-  } else if (kind == Kind::Half) {
-    value = roundToHalf(value);
-  }
+  if (!fitNumber(kind, value))
+    fail(tok_, "expected an " + std::string(kindName(kind)) + ", found " + describe(tok_) +
+                   (value != std::floor(value) ? "" : " (out of range)"));
   advance();
   return value;
+}
+
+// The fast path for the large numeric arrays that make up most of a real
+// file (points, normals, UVs, indices): numbers and tuples read straight
+// from the text with from_chars, no tokens made. It stops at the first
+// thing it does not handle — a comment, inf or nan, a number that does not
+// fit, anything malformed — leaving the text from the start of that element
+// to the token path, which reads it or reports the error at its exact
+// place. Returns true when it read the array through its closing ']'.
+bool UsdaParser::scanNumberArray(Kind kind, std::vector<double>& numbers, uint64_t& count) {
+  if (hasPeek_ || kind == Kind::Bool || !isNumeric(kind) || matrixDimension(kind)) return false;
+  const int components = componentCount(kind);
+  const Kind scalar = componentKind(kind);
+  const std::string_view text = lexer_.text();
+  const size_t size = text.size();
+  UsdaLexer::State at = UsdaLexer::stateAt(tok_);
+  size_t pos = at.pos;
+  auto skipSpace = [&] {  // false at a comment
+    while (pos < size) {
+      char c = text[pos];
+      if (c == ' ' || c == '\t') {
+        ++pos;
+      } else if (c == '\n' || c == '\r') {
+        ++pos;
+        if (c == '\r' && pos < size && text[pos] == '\n') ++pos;
+        ++at.line;
+        at.lineStart = pos;
+      } else {
+        return c != '#' && c != '/';
+      }
+    }
+    return true;
+  };
+  auto number = [&](double& out) {
+    size_t digits = pos < size && text[pos] == '-' ? pos + 1 : pos;
+    if (digits >= size || !((text[digits] >= '0' && text[digits] <= '9') || text[digits] == '.')) return false;
+    auto [end, ec] = std::from_chars(text.data() + pos, text.data() + size, out);
+    if (ec != std::errc()) return false;
+    size_t after = static_cast<size_t>(end - text.data());
+    if (after < size) {
+      char d = text[after];
+      if (d != ',' && d != ')' && d != ']' && d != ' ' && d != '\t' && d != '\n' && d != '\r') return false;
+    }
+    pos = after;
+    return fitNumber(scalar, out);
+  };
+  auto element = [&] {
+    double x = 0;
+    if (components == 1) {
+      if (!number(x)) return false;
+      numbers.push_back(x);
+      return true;
+    }
+    if (pos >= size || text[pos] != '(') return false;
+    ++pos;
+    for (int i = 0; i < components; ++i) {
+      if (i > 0) {
+        if (!skipSpace() || pos >= size || text[pos] != ',') return false;
+        ++pos;
+      }
+      if (!skipSpace() || !number(x)) return false;
+      numbers.push_back(x);
+    }
+    if (!skipSpace()) return false;
+    if (pos < size && text[pos] == ',' && (++pos, !skipSpace())) return false;
+    if (pos >= size || text[pos] != ')') return false;
+    ++pos;
+    return true;
+  };
+  while (true) {
+    UsdaLexer::State start = at;
+    start.pos = pos;
+    size_t mark = numbers.size();
+    auto handOver = [&] {  // back to the start of this element, for the token path
+      numbers.resize(mark);
+      lexer_.restore(start);
+      advance();
+      return false;
+    };
+    if (!skipSpace()) return handOver();
+    if (pos < size && text[pos] == ']') {
+      at.pos = pos + 1;
+      lexer_.restore(at);
+      advance();
+      return true;
+    }
+    if (count >= limits_.maxArrayElements || !element() || !skipSpace()) return handOver();
+    if (pos < size && text[pos] == ',') {
+      ++pos;
+    } else if (pos >= size || text[pos] != ']') {
+      return handOver();
+    }
+    ++count;
+  }
 }
 
 void UsdaParser::parseElement(Kind kind, std::vector<double>& numbers, std::vector<std::string>& strings) {
@@ -162,6 +264,7 @@ Value UsdaParser::parseTypedValue(ValueType type, const std::string& typeName) {
   if (!tok_.is('[')) expected("'[' to start the " + typeName + " value");
   advance();
   uint64_t count = 0;
+  if (scanNumberArray(type.kind, v.numbers, count)) return v;
   while (!tok_.is(']')) {
     if (++count > limits_.maxArrayElements)
       fail(tok_, "the " + typeName + " array has more than " + std::to_string(limits_.maxArrayElements) +
@@ -249,11 +352,12 @@ Value UsdaParser::parseTypedDictionary() {
   return Value::dict(std::move(dict));
 }
 
-std::string UsdaParser::parsePath(const std::string& anchor, bool primPathOnly) {
+std::string UsdaParser::parsePath(bool primPathOnly) {
   if (tok_.kind != TokenKind::Path) expected(primPathOnly ? "a prim path (<...>)" : "a path (<...>)");
   std::string written(tok_.text);
   if (written.empty()) fail(tok_, "empty path <>");
-  std::string absolute = path::makeAbsolute(path::stripVariants(path::primPart(anchor)), written);
+  if (!path::isValidPath(written)) fail(tok_, describe(tok_) + " is not a valid path");
+  std::string absolute = path::makeAbsolute(anchor_, written);
   if (absolute.empty()) fail(tok_, "the path <" + written + "> climbs above the root");
   if (primPathOnly && absolute.size() != path::primPart(absolute).size())
     fail(tok_, "expected a prim path, found the property path <" + written + ">");
@@ -261,20 +365,20 @@ std::string UsdaParser::parsePath(const std::string& anchor, bool primPathOnly) 
   return absolute;
 }
 
-std::vector<std::string> UsdaParser::parsePathList(const std::string& anchor, bool allowNone, bool primPathsOnly) {
+std::vector<std::string> UsdaParser::parsePathList(bool allowNone, bool primPathsOnly) {
   std::vector<std::string> paths;
   if (allowNone && tok_.isWord("None")) {
     advance();
     return paths;
   }
   if (!tok_.is('[')) {
-    paths.push_back(parsePath(anchor, primPathsOnly));
+    paths.push_back(parsePath(primPathsOnly));
     return paths;
   }
   advance();
   while (!tok_.is(']')) {
     if (paths.size() >= limits_.maxArrayElements) fail(tok_, "too many paths in the list");
-    paths.push_back(parsePath(anchor, primPathsOnly));
+    paths.push_back(parsePath(primPathsOnly));
     if (tok_.is(',')) advance();
     else if (!tok_.is(']')) expected("',' or ']' in the path list");
   }
@@ -326,7 +430,7 @@ LayerOffset UsdaParser::parseLayerOffsetEntries(Reference* reference) {
   return offset;
 }
 
-std::vector<Reference> UsdaParser::parseReferenceList(const std::string& anchor, bool payload) {
+std::vector<Reference> UsdaParser::parseReferenceList(bool payload) {
   std::vector<Reference> refs;
   if (tok_.isWord("None")) {
     advance();
@@ -341,9 +445,9 @@ std::vector<Reference> UsdaParser::parseReferenceList(const std::string& anchor,
                        arc + ")");
       ref.assetPath = decodeString(tok_);
       advance();
-      if (tok_.kind == TokenKind::Path) ref.primPath = parsePath(anchor, true);
+      if (tok_.kind == TokenKind::Path) ref.primPath = parsePath(true);
     } else if (tok_.kind == TokenKind::Path) {
-      ref.primPath = parsePath(anchor, true);
+      ref.primPath = parsePath(true);
     } else {
       expected(std::string("an asset path (@file@) or a prim path (<path>) for the ") + arc);
     }
@@ -402,13 +506,13 @@ Value UsdaParser::parseStringDictionary() {
   return Value::dict(std::move(dict));
 }
 
-Value UsdaParser::parseRelocates(const std::string& anchor) {
+Value UsdaParser::parseRelocates() {
   expectPunct('{', "to start the relocates");
   Dictionary dict;
   while (!tok_.is('}')) {
-    std::string source = parsePath(anchor, true);
+    std::string source = parsePath(true);
     expectPunct(':', "after the relocated path");
-    dict[source] = Value::text(Kind::String, parsePath(anchor, true));
+    dict[source] = Value::text(Kind::String, parsePath(true));
     if (tok_.is(',')) advance();
     else if (!tok_.is('}')) expected("',' or '}' in the relocates");
   }

@@ -153,6 +153,16 @@ template struct ListOp<std::string>;
 template struct ListOp<int64_t>;
 template struct ListOp<Reference>;
 
+std::string listOpKey(const Reference& item) {
+  std::string key = item.assetPath;
+  key += '\0';
+  key += item.primPath;
+  key += '\0';
+  key.append(reinterpret_cast<const char*>(&item.offset.offset), sizeof(double));
+  key.append(reinterpret_cast<const char*>(&item.offset.scale), sizeof(double));
+  return key;
+}
+
 bool operator==(const Reference& a, const Reference& b) {
   if (a.assetPath != b.assetPath || a.primPath != b.primPath || !(a.offset == b.offset)) return false;
   if (!a.customData || !b.customData) return !a.customData == !b.customData;

@@ -19,6 +19,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace sdg::usd {
@@ -163,45 +166,74 @@ struct TimeSamples {
   bool operator==(const TimeSamples&) const = default;
 };
 
+// The identity of a list-op item, for applyTo's lookups (a reference's
+// custom data is not part of it).
+inline const std::string& listOpKey(const std::string& item) { return item; }
+inline int64_t listOpKey(int64_t item) { return item; }
+std::string listOpKey(const Reference& item);
+
+// Sdf's ApplyOperations, in O(n) expected time however long the lists (a
+// hostile layer may write a million items).
 template <class T>
 std::vector<T> ListOp<T>::applyTo(const std::vector<T>& weaker) const {
-  auto contains = [](const std::vector<T>& items, const T& item) {
-    return std::find(items.begin(), items.end(), item) != items.end();
+  using Key = std::decay_t<decltype(listOpKey(std::declval<const T&>()))>;
+  auto unique = [](const std::vector<T>& items, std::unordered_set<Key>& seen, std::vector<T>& out) {
+    for (const T& item : items)
+      if (seen.insert(listOpKey(item)).second) out.push_back(item);
   };
-  auto remove = [](std::vector<T>& items, const T& item) {
-    items.erase(std::remove(items.begin(), items.end(), item), items.end());
+  auto removeAll = [](std::vector<T>& items, const std::unordered_set<Key>& keys) {
+    items.erase(std::remove_if(items.begin(), items.end(), [&](const T& item) { return keys.count(listOpKey(item)) > 0; }),
+                items.end());
   };
   std::vector<T> result;
+  std::unordered_set<Key> present;
   if (isExplicit) {
-    for (const T& item : explicitItems)
-      if (!contains(result, item)) result.push_back(item);
+    unique(explicitItems, present, result);
     return result;
   }
-  for (const T& item : weaker)
-    if (!contains(result, item)) result.push_back(item);
-  for (const T& item : deletedItems) remove(result, item);
+  unique(weaker, present, result);
+  if (!deletedItems.empty()) {
+    std::unordered_set<Key> gone;
+    for (const T& item : deletedItems) gone.insert(listOpKey(item));
+    removeAll(result, gone);
+    for (const Key& key : gone) present.erase(key);
+  }
   for (const T& item : addedItems)
-    if (!contains(result, item)) result.push_back(item);
-  // Prepended items go to the front in their order, moving any copy already there.
-  std::vector<T> front;
-  for (const T& item : prependedItems)
-    if (!contains(front, item)) front.push_back(item);
-  for (const T& item : front) remove(result, item);
-  result.insert(result.begin(), front.begin(), front.end());
-  for (const T& item : appendedItems) {
-    remove(result, item);
-    result.push_back(item);
+    if (present.insert(listOpKey(item)).second) result.push_back(item);
+  if (!prependedItems.empty()) {  // to the front in their order, the first of repeated items counting
+    std::vector<T> front;
+    std::unordered_set<Key> keys;
+    unique(prependedItems, keys, front);
+    removeAll(result, keys);
+    front.insert(front.end(), result.begin(), result.end());
+    result = std::move(front);
+    present.insert(keys.begin(), keys.end());
+  }
+  if (!appendedItems.empty()) {  // to the back in their order, the last of repeated items counting
+    std::vector<T> back;
+    std::unordered_set<Key> keys;
+    for (auto it = appendedItems.rbegin(); it != appendedItems.rend(); ++it)
+      if (keys.insert(listOpKey(*it)).second) back.push_back(*it);
+    std::reverse(back.begin(), back.end());
+    removeAll(result, keys);
+    result.insert(result.end(), back.begin(), back.end());
+    present.insert(keys.begin(), keys.end());
   }
   // The old `reorder` form: the listed items that are present take, among
   // the positions they occupy, the order given.
   if (!orderedItems.empty()) {
+    std::unordered_map<Key, size_t> rank;
+    for (size_t i = 0; i < orderedItems.size(); ++i) rank.emplace(listOpKey(orderedItems[i]), i);
     std::vector<size_t> slots;
-    for (size_t i = 0; i < result.size(); ++i)
-      if (contains(orderedItems, result[i])) slots.push_back(i);
     std::vector<T> placed;
-    for (const T& item : orderedItems)
-      if (contains(result, item) && !contains(placed, item)) placed.push_back(item);
-    for (size_t i = 0; i < placed.size(); ++i) result[slots[i]] = placed[i];
+    for (size_t i = 0; i < result.size(); ++i)
+      if (rank.count(listOpKey(result[i]))) {
+        slots.push_back(i);
+        placed.push_back(result[i]);
+      }
+    std::stable_sort(placed.begin(), placed.end(),
+                     [&](const T& a, const T& b) { return rank.at(listOpKey(a)) < rank.at(listOpKey(b)); });
+    for (size_t i = 0; i < slots.size(); ++i) result[slots[i]] = placed[i];
   }
   return result;
 }

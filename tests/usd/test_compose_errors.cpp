@@ -2,6 +2,10 @@
 // location: cycles, missing files, missing prims, missing defaultPrim; wide
 // or deep hostile compositions stop at the limits.
 #include <catch2/catch.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "usd/compose_test_util.h"
 
@@ -91,4 +95,24 @@ TEST_CASE("compose errors: wide and deep hostile compositions are bounded", "[co
   ComposeOptions fewPrims;
   fewPrims.limits.maxPrims = 50;
   CHECK_THAT(composeError(layers, "distinct.usda", fewPrims), Catch::Contains("more than 50 composed prims, the limit"));
+}
+
+TEST_CASE("compose errors: a missing file on disk names the referencing location", "[compose]") {
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sdg_usd_missing_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::string root = (dir / "root.usda").string();
+  {
+    std::ofstream out(root);
+    out << "#usda 1.0\ndef \"A\" (\n    references = @./missing.usda@\n) {}\n";
+  }
+  std::string error;
+  try {
+    composeStage(root, textLayerFileReader());
+  } catch (const UsdError& e) {
+    error = e.what();
+  }
+  std::filesystem::remove_all(dir);
+  std::string missing = (dir / "missing.usda").string();
+  CHECK(error == root + ":2:1: reference @./missing.usda@ (" + missing + "): " + missing +
+                     ": cannot open the layer: No such file or directory");
 }

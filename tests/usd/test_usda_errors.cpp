@@ -108,9 +108,32 @@ TEST_CASE("usda errors: hostile input fails cleanly within the limits", "[usda]"
     CHECK_THAT(errorOf("#usda 1.0\ndef"), Catch::Contains("found the end of the file"));
     CHECK(errorOf("#usda 1.0").empty());  // the header alone is an empty layer
   }
+  SECTION("malformed relative paths (found by fuzz_usda: one looped forever)") {
+    CHECK(errorOf("#usda 1.0\ndef \"A\" (\n    references = @./x.usda@<tlm/Material[X>\n) {}\n") ==
+          "bad.usda:3:28: the path <tlm/Material[X> is not a valid path");
+    CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    rel r = <../../B>\n}\n") ==
+          "bad.usda:3:13: the path <../../B> climbs above the root");
+  }
   SECTION("binary junk and numbers that do not fit") {
     CHECK_THAT(errorOf(std::string("#usda 1.0\n\0\xff\x01", 14)), Catch::Contains("unexpected byte 0x00"));
     CHECK_THAT(errorOf("#usda 1.0\ndef \"A\" { int i = 99999999999999999999999 }\n"), Catch::Contains("out of range"));
     CHECK(errorOf("#usda 1.0\ndef \"A\" {\n double d = 1e999\n}\n").empty());  // inf, as Sdf reads it
   }
+}
+
+TEST_CASE("usda errors: inside long arrays, located exactly", "[usda]") {
+  std::string many;
+  for (int i = 0; i < 1000; ++i) many += "(1, 2, 3), ";
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    int[] i = [1, 2,\n        3, 4.5, 5]\n}\n") ==
+        "bad.usda:4:12: expected an int, found the number 4.5");
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    uchar[] c = [1, 256]\n}\n") ==
+        "bad.usda:3:21: expected an uchar, found the number 256 (out of range)");
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    float3[] p = [" + many + "(1, 2)]\n}\n") ==
+        "bad.usda:3:11024: expected ',' and 1 more numbers in a float3 value, found ')'");
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    float3[] p = [" + many + "(1, 2, 3) (4, 5, 6)]\n}\n") ==
+        "bad.usda:3:11029: expected ',' or ']' in the float3[] array, found '('");
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    float[] f = [1, 2.5.3]\n}\n") ==
+        "bad.usda:3:24: expected ',' or ']' in the float[] array, found the number .3");
+  CHECK(errorOf("#usda 1.0\ndef \"A\" {\n    float[] f = [1, 2\n") ==
+        "bad.usda:4:1: expected ',' or ']' in the float[] array, found the end of the file");
 }

@@ -370,3 +370,53 @@ def "A" ( myPlugin:flag = true; customThing = 3; tags = ["a", "b"]; vec = (1, 2,
   CHECK(fieldOf(layer, "/A.b", "default").asDouble() == 2);
   CHECK(fieldOf(layer, "/A.c", "default").asDouble() == 3);
 }
+
+TEST_CASE("usda: numeric arrays read the same by the fast scanner and the token path", "[usda]") {
+  // The scanner reads plain arrays; a comment in front of the first element
+  // sends the whole array through the token path instead.
+  std::string items;
+  for (int i = 0; i < 200; ++i)
+    items += "(" + std::to_string(i * 0.37 - 20) + ", -" + std::to_string(i) + "e-3, " + std::to_string(i) + ".25),\n  ";
+  Layer fast = parse("#usda 1.0\ndef \"A\" {\n  float3[] p = [" + items + "]\n  half2[] h = [(0.1, 7), (65519, -0)]\n}\n");
+  Layer slow = parse("#usda 1.0\ndef \"A\" {\n  float3[] p = [ # tokens\n" + items +
+                     "]\n  half2[] h = [ /* c */ (0.1, 7), (65519, -0)]\n}\n");
+  CHECK(fieldOf(fast, "/A.p", "default") == fieldOf(slow, "/A.p", "default"));
+  CHECK(fieldOf(fast, "/A.p", "default").elementCount() == 200);
+  CHECK(fieldOf(fast, "/A.h", "default") == fieldOf(slow, "/A.h", "default"));
+  CHECK(fieldOf(fast, "/A.h", "default").numbers[2] == 65504);  // 65519 rounds to the largest half
+
+  // Mid-array hand-overs: comments, inf and nan, trailing commas, then the scanner's shapes again.
+  Layer mixed = parse(R"(#usda 1.0
+def "A" {
+    double3[] v = [(1, 2, 3), # one
+        (inf, -inf, 4), (1e3, .5, -.5), (1, 2, 3,),
+        (7, 8, 9)]
+    int[] i = [1, 2,
+        3 /* three */, 4]
+    float next = 1
+}
+)");
+  const Value& v = fieldOf(mixed, "/A.v", "default");
+  REQUIRE(v.numbers.size() == 15);
+  CHECK(std::isinf(v.numbers[3]));
+  CHECK(v.numbers[4] < 0);
+  CHECK(v.numbers[6] == 1000);
+  CHECK(v.numbers[7] == 0.5);
+  CHECK(v.numbers[14] == 9);
+  CHECK(fieldOf(mixed, "/A.i", "default").numbers == std::vector<double>{1, 2, 3, 4});
+  CHECK(fieldOf(mixed, "/A.next", "default").asDouble() == 1);
+}
+
+TEST_CASE("usda: Windows line endings count lines the same", "[usda]") {
+  Layer layer = parse("#usda 1.0\r\n(\r\n    upAxis = \"Z\"\r\n)\r\ndef \"A\"\r\n{\r\n    float3[] p = [\r\n(1, 2, 3),\r\n(4, 5, 6)]\r\n"
+                      "    string s = \"\"\"a\r\nb\"\"\"\r\n    float x = 1\r\n}\r\n");
+  CHECK(specAt(layer, "/A").loc.str() == "test.usda:5:1");
+  CHECK(fieldOf(layer, "/A.p", "default").numbers.size() == 6);
+  CHECK(specAt(layer, "/A.x").loc.str() == "test.usda:12:5");
+  try {
+    parse("#usda 1.0\r\ndef \"A\"\r\n{\r\n    float x = \r\n}\r\n");
+    FAIL("expected an error");
+  } catch (const UsdError& e) {
+    CHECK(std::string(e.what()) == "test.usda:5:1: expected a float number, found '}'");
+  }
+}
