@@ -88,6 +88,14 @@ inline constexpr const char* kComment = "comment";                // String (lay
 inline constexpr const char* kInterpolation = "interpolation";    // Token (primvars)
 inline constexpr const char* kElementSize = "elementSize";        // Int (primvars)
 inline constexpr const char* kColorSpace = "colorSpace";          // Token (asset attributes)
+inline constexpr const char* kPrimOrder = "primOrder";            // TokenVector (`reorder nameChildren`/`rootPrims`)
+inline constexpr const char* kPropertyOrder = "propertyOrder";    // TokenVector (`reorder properties`)
+inline constexpr const char* kDisplayName = "displayName";        // String
+inline constexpr const char* kHidden = "hidden";                  // Bool
+inline constexpr const char* kPermission = "permission";          // Permission
+inline constexpr const char* kRelocates = "relocates";            // Dictionary source path -> target path (String)
+inline constexpr const char* kAssetInfo = "assetInfo";            // Dictionary
+inline constexpr const char* kCustomLayerData = "customLayerData";  // Dictionary (layer)
 }  // namespace field
 
 // A whole layer. `specs` holds the pseudo-root at "/" (the layer's metadata:
@@ -117,7 +125,9 @@ struct ReadLimits {
 
 // Errors of the USD module: a message that names the file and the line:col
 // (usda) or the section (crate: "TOKENS section", "spec 12", ...).
-// scene_io turns these into SceneError (exit 2).
+// scene_io turns these into SceneError (exit 2). Errors made by usdErrorAt
+// (the usda reader, layer_io, composition) start their what() with
+// loc.str() ("a.usda:12:5: expected ..."); loc() gives the parts.
 class UsdError : public std::runtime_error {
  public:
   UsdError(SourceLoc loc, const std::string& message)
@@ -127,5 +137,10 @@ class UsdError : public std::runtime_error {
  private:
   SourceLoc loc_;
 };
+
+// A UsdError whose message starts with the location ("file:line:col: message").
+inline UsdError usdErrorAt(const SourceLoc& loc, const std::string& message) {
+  return UsdError(loc, loc.known() ? loc.str() + ": " + message : message);
+}
 
 }  // namespace sdg::usd

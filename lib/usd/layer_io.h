@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <string_view>
 
 #include "usd/layer.h"
@@ -23,7 +24,25 @@ Layer readCrateLayer(std::span<const uint8_t> bytes, const std::string& identifi
                      const ReadLimits& limits = {});
 
 // Reads the layer at `path`: a .usda/.usdc/.usd file, a .usdz package (its
-// root layer) or a package entry "pkg.usdz[inner/path.usdc]".
+// root layer) or a package entry "pkg.usdz[inner/path.usdc]". Defined in
+// layer_io_binary.cpp, which needs the crate reader and the package reader.
 Layer readLayerFile(const std::string& path, const ReadLimits& limits = {});
+
+// The layer `entry` of the .usdz package at `packagePath` ("" = the
+// package's root layer, its first entry). Defined by the package reader.
+Layer readPackagedLayer(const std::string& packagePath, const std::string& entry, const ReadLimits& limits = {});
+
+// The whole file (UsdError naming the file when it cannot be read or is
+// larger than limits.maxFileBytes).
+std::string readFileBytes(const std::string& path, const ReadLimits& limits = {});
+
+// A text layer file: .usda, or .usd whose first bytes are "#usda". A binary
+// file is a UsdError saying so (readLayerFile reads those).
+Layer readTextLayerFile(const std::string& path, const ReadLimits& limits = {});
+
+// "pkg.usdz[inner/a.usdc]" -> {"pkg.usdz", "inner/a.usdc"}; a plain path
+// gives {path, ""}. Nested packages ("a.usdz[b.usdz[c.usda]]") split at the
+// outermost brackets.
+std::pair<std::string, std::string> splitPackagePath(const std::string& path);
 
 }  // namespace sdg::usd

@@ -12,11 +12,16 @@
 // SDG scene uses (int32, float, half, double, and int64 below 2^53) is exact
 // in a double, and one numeric store keeps the type small. `kind` keeps the
 // USD type so that writing a layer back gives the same type name.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <type_traits>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace sdg::usd {
@@ -52,6 +57,19 @@ int componentCount(Kind kind);              // 1 for scalars, 2..4 for vectors, 
 bool isNumeric(Kind kind);
 bool isText(Kind kind);
 
+// An attribute's value type: its Kind and whether it is an array. Role
+// names map to the Kind of their C++ type ("point3f" and "color3f" are both
+// Vec3f, "frame4d" is Matrix4d); the role stays in the spec's typeName.
+struct ValueType {
+  Kind kind = Kind::Empty;
+  bool isArray = false;
+};
+// Sdf's value type names ("float3", "point3f[]", "texCoord2f", "asset",
+// "matrix4d", ...); nullopt for any other name.
+std::optional<ValueType> valueTypeForName(std::string_view typeName);
+// Every name valueTypeForName accepts, without "[]" (for did-you-mean hints).
+const std::vector<std::string>& valueTypeNames();
+
 enum class Specifier : uint8_t { Def, Over, Class };
 enum class Variability : uint8_t { Varying, Uniform };
 enum class Permission : uint8_t { Public, Private };
@@ -73,6 +91,7 @@ struct Reference {
   LayerOffset offset;
   std::shared_ptr<Dictionary> customData;  // null when none is authored
 };
+bool operator==(const Reference& a, const Reference& b);
 
 // Sdf's list op: either an explicit list, or edits to the weaker opinion's
 // list (delete, then prepend and append; `added` and `ordered` are the old
@@ -90,6 +109,7 @@ struct ListOp {
     return !isExplicit && addedItems.empty() && prependedItems.empty() && appendedItems.empty() &&
            deletedItems.empty() && orderedItems.empty();
   }
+  bool operator==(const ListOp&) const = default;
 };
 
 struct TimeSamples;
@@ -133,6 +153,8 @@ class Value {
   const std::string& asString() const;       // String, Token or AssetPath scalar
   const std::vector<std::string>& asStrings() const;
 };
+// Deep equality (the shared parts compared by content).
+bool operator==(const Value& a, const Value& b);
 
 struct TimeSamples {
   std::vector<double> times;  // ascending
@@ -141,6 +163,83 @@ struct TimeSamples {
   // before the first sample; no interpolation here — callers that need
   // linear interpolation of numbers do it themselves).
   const Value* heldAt(double time) const;
+  bool operator==(const TimeSamples&) const = default;
 };
+
+// The identity of a list-op item, for applyTo's lookups (a reference's
+// custom data is not part of it).
+inline const std::string& listOpKey(const std::string& item) { return item; }
+inline int64_t listOpKey(int64_t item) { return item; }
+std::string listOpKey(const Reference& item);
+
+// Sdf's ApplyOperations, in O(n) expected time however long the lists (a
+// hostile layer may write a million items).
+template <class T>
+std::vector<T> ListOp<T>::applyTo(const std::vector<T>& weaker) const {
+  using Key = std::decay_t<decltype(listOpKey(std::declval<const T&>()))>;
+  auto unique = [](const std::vector<T>& items, std::unordered_set<Key>& seen, std::vector<T>& out) {
+    for (const T& item : items)
+      if (seen.insert(listOpKey(item)).second) out.push_back(item);
+  };
+  auto removeAll = [](std::vector<T>& items, const std::unordered_set<Key>& keys) {
+    items.erase(std::remove_if(items.begin(), items.end(), [&](const T& item) { return keys.count(listOpKey(item)) > 0; }),
+                items.end());
+  };
+  std::vector<T> result;
+  std::unordered_set<Key> present;
+  if (isExplicit) {
+    unique(explicitItems, present, result);
+    return result;
+  }
+  unique(weaker, present, result);
+  if (!deletedItems.empty()) {
+    std::unordered_set<Key> gone;
+    for (const T& item : deletedItems) gone.insert(listOpKey(item));
+    removeAll(result, gone);
+    for (const Key& key : gone) present.erase(key);
+  }
+  for (const T& item : addedItems)
+    if (present.insert(listOpKey(item)).second) result.push_back(item);
+  if (!prependedItems.empty()) {  // to the front in their order, the first of repeated items counting
+    std::vector<T> front;
+    std::unordered_set<Key> keys;
+    unique(prependedItems, keys, front);
+    removeAll(result, keys);
+    front.insert(front.end(), result.begin(), result.end());
+    result = std::move(front);
+    present.insert(keys.begin(), keys.end());
+  }
+  if (!appendedItems.empty()) {  // to the back in their order, the last of repeated items counting
+    std::vector<T> back;
+    std::unordered_set<Key> keys;
+    for (auto it = appendedItems.rbegin(); it != appendedItems.rend(); ++it)
+      if (keys.insert(listOpKey(*it)).second) back.push_back(*it);
+    std::reverse(back.begin(), back.end());
+    removeAll(result, keys);
+    result.insert(result.end(), back.begin(), back.end());
+    present.insert(keys.begin(), keys.end());
+  }
+  // The old `reorder` form: the listed items that are present take, among
+  // the positions they occupy, the order given.
+  if (!orderedItems.empty()) {
+    std::unordered_map<Key, size_t> rank;
+    for (size_t i = 0; i < orderedItems.size(); ++i) rank.emplace(listOpKey(orderedItems[i]), i);
+    std::vector<size_t> slots;
+    std::vector<T> placed;
+    for (size_t i = 0; i < result.size(); ++i)
+      if (rank.count(listOpKey(result[i]))) {
+        slots.push_back(i);
+        placed.push_back(result[i]);
+      }
+    std::stable_sort(placed.begin(), placed.end(),
+                     [&](const T& a, const T& b) { return rank.at(listOpKey(a)) < rank.at(listOpKey(b)); });
+    for (size_t i = 0; i < slots.size(); ++i) result[slots[i]] = placed[i];
+  }
+  return result;
+}
+
+extern template struct ListOp<std::string>;
+extern template struct ListOp<int64_t>;
+extern template struct ListOp<Reference>;
 
 }  // namespace sdg::usd
