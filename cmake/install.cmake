@@ -17,11 +17,11 @@ install(TARGETS sdgbehave RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS sdgbehave_images LIBRARY DESTINATION lib/sdgbehave)
 
 # The include closure of behavior/plugin_api.h, behavior/interval_behavior.h,
-# core/log.h (what the templates in lib/behaviors/templates use) and
-# behaviors/templates/base_behavior.h, as `g++ -MM -Ilib` lists it; paths
+# core/log.h (what the templates in lib/builtin_behaviors/templates use) and
+# builtin_behaviors/templates/base_behavior.h, as `g++ -MM -Ilib` lists it; paths
 # relative to lib/, installed with that layout below include/sdgbehave/.
 # tests/python/check_install.py compares this list with the closure
-# (`c++ -MM` of lib/behaviors/templates/*), so an #include added to one of
+# (`c++ -MM` of lib/builtin_behaviors/templates/*), so an #include added to one of
 # these headers or to a template without updating the list fails that test.
 set(SDG_PLUGIN_HEADERS
   behavior/behavior.h
@@ -30,7 +30,7 @@ set(SDG_PLUGIN_HEADERS
   behavior/plugin_api.h
   behavior/registry.h
   behavior/rng.h
-  behaviors/templates/base_behavior.h
+  builtin_behaviors/templates/base_behavior.h
   core/diagnostics.h
   core/log.h
   core/payload.h

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/pathtrace/denoiser.h"
 #include "render/pathtrace/path_tracer.h"
 #include "scene_io/scene_loader.h"

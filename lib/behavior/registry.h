@@ -1,6 +1,6 @@
 #pragma once
 // Behavior names -> specs and factories. Built-ins are added from one table
-// (behaviors/builtin_behaviors.cpp); plugins add theirs through the same
+// (builtin_behaviors/builtin_behaviors.cpp); plugins add theirs through the same
 // add() from a versioned C entry point (plugin_api.h).
 #include <functional>
 #include <memory>

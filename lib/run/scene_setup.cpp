@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "assets/file_check.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "scripting/hook_watchdog.h"
 #include "scripting/script_loader.h"
 #include "core/text.h"

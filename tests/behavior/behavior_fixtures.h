@@ -9,7 +9,7 @@
 
 #include "assets/asset_resolver.h"
 #include "behavior/runtime.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "scene_io/scene_loader.h"
 #include "stage/stage_diff.h"
 

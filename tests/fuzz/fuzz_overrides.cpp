@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "core/diagnostics.h"
 #include "scene_io/scene_loader.h"
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "core/diagnostics.h"
 #include "scene_io/scene_loader.h"
 

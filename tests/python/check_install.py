@@ -6,7 +6,7 @@ usage: check_install.py BUILD_DIR SOURCE_DIR
 
 1. `cmake --install BUILD_DIR --prefix TMP/prefix`; the installed headers
    must be exactly the include closure (`c++ -MM`) of the plugin templates
-   in lib/behaviors/templates/, so an #include added to an API header
+   in lib/builtin_behaviors/templates/, so an #include added to an API header
    without installing the header fails here.
 2. A fresh folder with a copy of example_behavior.cpp and the CMakeLists.txt
    of docs/plugins.md (its first ```cmake block: find_package(sdgbehave),
@@ -87,7 +87,7 @@ def template_closure(cxx, source):
     """The headers below lib/ that the plugin templates include, directly or
     not, relative to lib/ (missing third-party headers are ignored: -MG)."""
     lib = os.path.join(source, "lib")
-    templates = os.path.join(lib, "behaviors", "templates")
+    templates = os.path.join(lib, "builtin_behaviors", "templates")
     headers = set()
     for name in sorted(os.listdir(templates)):
         if not name.endswith((".cpp", ".h")):
@@ -145,7 +145,7 @@ def main():
         # The plugin project, out of the source tree, as docs/plugins.md has it.
         project = os.path.join(tmp, "myplugin")
         os.makedirs(project)
-        shutil.copy(os.path.join(source, "lib", "behaviors", "templates", TEMPLATE), project)
+        shutil.copy(os.path.join(source, "lib", "builtin_behaviors", "templates", TEMPLATE), project)
         cmakelists = doc_cmakelists(source)
         with open(os.path.join(project, "CMakeLists.txt"), "w") as f:
             f.write(cmakelists)

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "assets/asset_resolver.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/raster/renderer.h"
 #include "scene_io/scene_loader.h"
 

@@ -5,7 +5,7 @@
 #include <span>
 #include <string>
 
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "scene_io/scene_loader.h"
 
 namespace sdg::test {

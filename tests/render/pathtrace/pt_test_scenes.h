@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/pathtrace/bsdf.h"
 #include "render/pathtrace/path_tracer.h"
 #include "render/render_list.h"

@@ -23,8 +23,8 @@
 #include <optional>
 
 #include "behavior/interval_behavior.h"
-#include "behaviors/builtin_behaviors.h"
-#include "behaviors/spec_helpers.h"
+#include "builtin_behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/spec_helpers.h"
 #include "core/log.h"
 
 namespace sdg {

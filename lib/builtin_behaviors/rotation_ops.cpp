@@ -1,4 +1,4 @@
-#include "behaviors/rotation_ops.h"
+#include "builtin_behaviors/rotation_ops.h"
 
 #include <optional>
 

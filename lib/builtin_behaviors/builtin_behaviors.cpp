@@ -1,4 +1,4 @@
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 
 namespace sdg {
 

@@ -29,8 +29,8 @@
 #include <optional>
 
 #include "behavior/interval_behavior.h"
-#include "behaviors/builtin_behaviors.h"
-#include "behaviors/spec_helpers.h"
+#include "builtin_behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/spec_helpers.h"
 #include "stage/xform_edit.h"
 
 namespace sdg {

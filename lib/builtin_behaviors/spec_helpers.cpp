@@ -1,4 +1,4 @@
-#include "behaviors/spec_helpers.h"
+#include "builtin_behaviors/spec_helpers.h"
 
 #include "core/text.h"
 

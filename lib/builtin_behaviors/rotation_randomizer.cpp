@@ -23,9 +23,9 @@
 #include <optional>
 
 #include "behavior/interval_behavior.h"
-#include "behaviors/builtin_behaviors.h"
-#include "behaviors/rotation_ops.h"
-#include "behaviors/spec_helpers.h"
+#include "builtin_behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/rotation_ops.h"
+#include "builtin_behaviors/spec_helpers.h"
 
 namespace sdg {
 namespace {
