@@ -4,6 +4,8 @@
 
 #include <filesystem>
 
+#include "assets/file_check.h"
+#include "assets/texture_source.h"
 #include "scene_io/usd_import.h"
 #include "scene_io/usd_materials.h"
 #include "scene_io/usd_fixtures.h"
@@ -293,4 +295,35 @@ TEST_CASE("usd materials: the MaterialX sample's material lives in a .mtlx layer
   CHECK_FALSE(sphere.material());
   REQUIRE(report.warnings.size() == 1);
   CHECK_THAT(report.warnings[0], Catch::Contains("/MaterialX/Materials/USD_Plastic"));
+}
+
+TEST_CASE("usd materials: a .usdz stage's normal maps are read from the package", "[scene_io][usd][samples]") {
+  const std::string file = std::string(SDG_SOURCE_DIR) +
+                           "/../shared/usd-samples/test_assets/NormalsTextureBiasAndScale/NormalsTextureBiasAndScale.usdz";
+  REQUIRE(std::filesystem::exists(file));  // run only through run_samples.sh, which skips when absent
+  usd::ComposedStage composed = usd::composeStage(file, [](const std::string& id) { return usd::readLayerFile(id); });
+  auto materialNamed = [&](const std::string& name) -> const usd::ComposedPrim* {
+    for (const usd::ComposedPrim& p : composed.prims)
+      if (p.typeName == "Material" && p.path.ends_with("/" + name)) return &p;
+    return nullptr;
+  };
+  const usd::ComposedPrim* plain = materialNamed("RNormals");
+  REQUIRE(plain);
+  Imported m;
+  importMaterial(composed, plain->path, m);
+  CHECK_FALSE(m.diag.hasErrors());
+  const std::string map = asset(*m.material, "inputs:normalmap_texture");
+  CHECK_THAT(map, Catch::EndsWith("NormalsTextureBiasAndScale.usdz[r_normal_map.png]"));
+  ImageRgba8 image = decodeTextureImage(map, nullptr, AssetResolver(), TextureData::Linear, "/M");
+  CHECK(image.width > 0);
+  CHECK(image.pixels.size() == size_t(image.width) * image.height * 4);
+  CHECK(!fileProblem(map, FileKind::Image, AssetResolver()));
+  CHECK(fileProblem(file + "[missing.png]", FileKind::Image, AssetResolver()));
+
+  // A flipped map's scale/bias is not one the stage reads: no map, one warning.
+  Imported flipped;
+  importMaterial(composed, materialNamed("RNormalsReversedX0BiasZ")->path, flipped);
+  CHECK(flipped.material->findAttribute("inputs:normalmap_texture") == nullptr);
+  REQUIRE(flipped.report.warnings.size() == 1);
+  CHECK_THAT(flipped.report.warnings[0], Catch::Contains("scale/bias other than 2/-1"));
 }
