@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "assets/image.h"
+#include "assets/packaged_image.h"
 #include "core/log.h"
 #include "core/text.h"
 #include "stage/prim_types.h"
@@ -245,6 +246,15 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
       return noun + " " + text::quote(file) + " is not a mesh format sdgbehave reads; mesh files end in " +
              text::join(readableExtensions(FileKind::Mesh), ", ");
     if (!mesh->sniff) return noun + " " + text::quote(file) + " " + mesh->refusal;
+  }
+  if (kind == FileKind::Image && isPackagedAssetPath(file)) {  // a texture of a .usdz stage: decode it
+    try {
+      std::vector<uint8_t> bytes = readPackagedAsset(file, resolver);
+      decodeImageRgba8(bytes.data(), bytes.size(), file, TextureData::Linear);
+      return std::nullopt;
+    } catch (const RunError& e) {
+      return noun + " " + text::quote(file) + ": " + e.what();
+    }
   }
   std::optional<std::string> path = resolver.resolve(file);
   if (!path && resolver.leavesRoots(file))

@@ -1,5 +1,6 @@
 #include "assets/texture_source.h"
 
+#include "assets/packaged_image.h"
 #include "core/diagnostics.h"
 
 namespace sdg {
@@ -30,7 +31,12 @@ ImageRgba8 decodeEmbedded(const EmbeddedImage& e, TextureData data) {
 ImageRgba8 decodeTextureImage(const std::string& key, const EmbeddedImage* embedded, const AssetResolver& assets,
                               TextureData data, const std::string& owner) {
   try {
-    return embedded ? decodeEmbedded(*embedded, data) : loadImageRgba8(resolveOrThrow(key, assets), data);
+    if (embedded) return decodeEmbedded(*embedded, data);
+    if (isPackagedAssetPath(key)) {  // a texture of a .usdz stage
+      std::vector<uint8_t> bytes = readPackagedAsset(key, assets);
+      return decodeImageRgba8(bytes.data(), bytes.size(), key, data);
+    }
+    return loadImageRgba8(resolveOrThrow(key, assets), data);
   } catch (const RunError& e) {
     throw RunError(owner + ": " + e.what());
   }
