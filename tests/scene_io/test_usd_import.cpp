@@ -52,7 +52,7 @@ TEST_CASE("usd import: a cube, a mesh, a camera and lights make a runnable scene
   CHECK(cam.getFloat("focalLength") == 35.0f);
   CHECK(cam.value("clippingRange")->get<Vec2f>().isApprox(Vec2f(0.1f, 100.0f)));
   CHECK(scene.stage.find("/World/Sun")->type() == PrimType::DistantLight);
-  CHECK(scene.stage.find("/World/Sun")->getFloat("inputs:intensity") == 3.0f);
+  CHECK(scene.stage.find("/World/Sun")->getFloat("inputs:intensity") == 3000.0f);
   CHECK(scene.stage.find("/World/Sky")->type() == PrimType::DomeLight);
   // Defaults for what a USD stage does not say: the first camera, one writer.
   CHECK(scene.capture.get("cameras").get<std::vector<std::string>>() == std::vector<std::string>{"/World/Cam"});
