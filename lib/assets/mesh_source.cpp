@@ -19,6 +19,7 @@ MeshKey meshKeyOf(const Prim& prim) {
     case PrimType::Mesh:
       key.asset = prim.getString("asset");
       key.submesh = prim.getString("submesh");
+      if (key.asset.empty()) key.inlineMesh = inlineMeshOf(prim);
       break;
     case PrimType::Cube: key.a = prim.getDouble("size"); break;
     case PrimType::Sphere: key.a = prim.getDouble("radius"); break;
@@ -41,6 +42,7 @@ MeshKey meshKeyOf(const Prim& prim) {
 
 std::string MeshKey::id() const {
   std::string key(primTypeInfo(shape).name);
+  if (inlineMesh) return key + ":" + inlineMesh->id();
   if (shape == PrimType::Mesh) return key + ":" + asset + "#" + submesh;
   return key + ":" + text::formatDouble(a) + ":" + text::formatDouble(b) + ":" + text::formatDouble(c) + ":" + axis;
 }
@@ -55,6 +57,7 @@ MeshData meshDataFor(const MeshKey& key, const AssetResolver& assets, const std:
     case PrimType::Plane: return makePlane(key.b, key.c, key.axis);
     default: break;
   }
+  if (key.inlineMesh) return triangulateInlineMesh(*key.inlineMesh, primPath);
   std::optional<std::string> path = assets.resolve(key.asset);
   if (!path) throw RunError(primPath + ": mesh '" + key.asset + "' not found; " + assets.describeSearch(key.asset));
   try {

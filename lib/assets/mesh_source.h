@@ -5,6 +5,7 @@
 #include <string>
 
 #include "assets/asset_resolver.h"
+#include "assets/inline_mesh.h"
 #include "assets/mesh_data.h"
 #include "stage/prim.h"
 
@@ -17,6 +18,7 @@ struct MeshKey {
   std::string submesh;
   double a = 0, b = 0, c = 0;       // size / radius, height / width, length
   char axis = 'Z';
+  std::shared_ptr<const InlineMesh> inlineMesh;  // a Mesh with inline geometry (asset empty)
   std::string id() const;           // a stable cache key
 };
 

@@ -73,7 +73,7 @@ std::shared_ptr<const Collider> ColliderCache::get(const MeshKey& key, const Ass
   // Files are keyed by where they resolve, so two scenes with different
   // asset roots never share a wrong entry.
   std::string id = key.id();
-  if (key.shape == PrimType::Mesh)
+  if (key.shape == PrimType::Mesh && !key.inlineMesh)
     if (std::optional<std::string> path = assets.resolve(key.asset)) id = "Mesh:" + *path + "#" + key.submesh;
   {
     std::lock_guard lock(mutex_);

@@ -12,7 +12,11 @@
 #include "core/file_io.h"
 #include "scene_io/references.h"
 #include "scene_io/scene_loader.h"
+#include "scene_io/overrides.h"
+#include "scene_io/scene_validate.h"
 #include "scene_io/scene_writer.h"
+#include "scene_io/usd_import.h"
+#include "usd/layer_io.h"
 
 namespace sdg {
 
@@ -134,7 +138,51 @@ std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const De
 
 }  // namespace
 
+bool isUsdStagePath(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+}
+
+namespace {
+
+// A USD stage given where a scene is expected: its prims imported
+// (scene_io/usd_import.h), the defaults it does not say added, then --set
+// and the checks every scene gets.
+LoadedScene loadUsdStageForRun(const SceneRequest& request) {
+  BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
+  UsdImportReport report;
+  Scene scene = importUsdScene(request.scenePath, registry.catalog(), UsdImportOptions{}, report);
+  for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
+  Diagnostics diag;
+  applyOverrides(request.overrides, registry.catalog(), scene, diag);
+  if (!diag.hasErrors()) validateScene(scene, registry.catalog(), diag);
+  diag.throwIfErrors();
+  scripting::setHookTimeout(request.hookTimeout.value_or(scene.run.get("hook_timeout").get<double>()));
+  AssetResolver assets =
+      makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
+  if (request.confineAssets) assets.confineToRoots();
+  checkStageFiles(scene.stage, registry.catalog(), assets, diag);
+  diag.throwIfErrors();
+  std::vector<std::string> scriptFiles = request.scripts;
+  for (const std::string& s : report.scriptFiles) scriptFiles.push_back(s);
+  for (std::string& file : scriptFiles) file = std::filesystem::absolute(file).lexically_normal().string();
+  // Every layer read is part of the run's identity; package entries by their package.
+  std::vector<std::string> mounted;
+  for (const std::string& layer : report.layers) {
+    std::string file = std::filesystem::absolute(usd::splitPackagePath(layer).first).lexically_normal().string();
+    if (std::find(mounted.begin(), mounted.end(), file) == mounted.end()) mounted.push_back(file);
+  }
+  std::vector<std::string> pluginFiles = request.plugins;
+  for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
+  return LoadedScene{std::move(registry), std::move(scene), std::move(assets), std::move(scriptFiles), std::move(mounted),
+                     std::move(pluginFiles)};
+}
+
+}  // namespace
+
 LoadedScene loadSceneForRun(const SceneRequest& request) {
+  if (isUsdStagePath(request.scenePath) && !request.sceneText) return loadUsdStageForRun(request);
   SceneDocument doc = request.sceneText ? sceneDocumentFromText(*request.sceneText, request.scenePath)
                                         : readSceneDocument(request.scenePath);
   BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);

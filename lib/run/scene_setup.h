@@ -91,6 +91,9 @@ void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 // the time limit of calls into behavior scripts (--hook-timeout, else
 // run.hook_timeout). Throws SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
+// A USD stage file (.usd, .usda, .usdc, .usdz): loadSceneForRun imports it
+// (scene_io/usd_import.h) instead of reading YAML.
+bool isUsdStagePath(const std::string& path);
 // Runs a behavior script again after it changed on disk, so that scenes
 // loaded from now on get its new classes (scripting::reloadScript: a
 // SceneError says why a script no longer loads; the last good one stays).

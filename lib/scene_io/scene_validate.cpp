@@ -1,5 +1,6 @@
 #include "scene_io/scene_validate.h"
 
+#include "assets/inline_mesh.h"
 #include "core/text.h"
 
 namespace sdg {
@@ -24,8 +25,14 @@ void validateCamera(const Prim& prim, Diagnostics& diag) {
 
 void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& catalog, Diagnostics& diag) {
   if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
-  if (prim.type() == PrimType::Mesh && prim.getString("asset").empty())
-    diag.error(prim.loc(), prim.path() + ": a Mesh needs `asset:` (the path of its mesh file)");
+  if (prim.type() == PrimType::Mesh && prim.getString("asset").empty()) {
+    if (auto mesh = inlineMeshOf(prim)) {
+      if (std::string problem = inlineMeshProblem(*mesh); !problem.empty())
+        diag.error(prim.loc(), prim.path() + ": " + problem);
+    } else {
+      diag.error(prim.loc(), prim.path() + ": a Mesh needs `asset:` (the path of its mesh file) or inline `points:`");
+    }
+  }
   if (const auto& binding = prim.material()) {
     const Prim* target = stage.find(binding->path);
     if (!target)

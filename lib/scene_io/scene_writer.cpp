@@ -61,6 +61,27 @@ void emitValue(YAML::Emitter& out, const Value& value) {
       for (const std::string& s : value.get<std::vector<std::string>>()) out << YAML::DoubleQuoted << s;
       out << YAML::EndSeq;
       break;
+    case ValueType::IntArray:
+      out << YAML::Flow << YAML::BeginSeq;
+      for (int32_t i : value.get<IntArray>().items()) out << std::to_string(i);
+      out << YAML::EndSeq;
+      break;
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      // Written inline: flat for float[], one [x, y(, z)] per item otherwise.
+      const size_t width = size_t(arrayWidth(value.type()));
+      const FloatArray& a = value.get<FloatArray>();
+      out << YAML::Flow << YAML::BeginSeq;
+      for (size_t i = 0; i < a.size(); i += width) {
+        if (width > 1) out << YAML::Flow << YAML::BeginSeq;
+        for (size_t k = 0; k < width; ++k) emitNumber(out, a[i + k]);
+        if (width > 1) out << YAML::EndSeq;
+      }
+      out << YAML::EndSeq;
+      break;
+    }
   }
 }
 

@@ -151,6 +151,39 @@ struct Reader {
     return out;
   }
 
+  // float[] is a flat list; the tuple types a list of [x, y(, z)] items.
+  std::optional<Value> floatArray(const RawNode& n, ValueType type) {
+    if (!n.isSequence()) {
+      diag.error(n.loc, expected(what, type, n));
+      return std::nullopt;
+    }
+    const size_t width = size_t(arrayWidth(type));
+    std::vector<float> out;
+    out.reserve(n.items.size() * width);
+    auto push = [&](const RawNode& item) {
+      auto d = number(item, type, false);
+      if (!d) return false;
+      auto f = toFloat(item, *d);
+      if (!f) return false;
+      out.push_back(*f);
+      return true;
+    };
+    for (const RawNode& item : n.items) {
+      if (width == 1) {
+        if (!push(item)) return std::nullopt;
+        continue;
+      }
+      if (!item.isSequence() || item.items.size() != width) {
+        diag.error(item.loc, std::string(what) + ": expected a list of " + std::to_string(width) +
+                                 " numbers in the list, found " + item.describe());
+        return std::nullopt;
+      }
+      for (const RawNode& c : item.items)
+        if (!push(c)) return std::nullopt;
+    }
+    return Value::makeFloatArray(type, std::move(out));
+  }
+
   std::optional<Value> read(const RawNode& n, ValueType type) {
     switch (type) {
       case ValueType::Bool:
@@ -245,6 +278,24 @@ struct Reader {
         if (!v) return std::nullopt;
         return type == ValueType::AssetArray ? Value::makeAssetArray(*v) : Value::makeStringArray(*v);
       }
+      case ValueType::IntArray: {
+        if (!n.isSequence()) {
+          diag.error(n.loc, expected(what, type, n));
+          return std::nullopt;
+        }
+        std::vector<int32_t> out;
+        out.reserve(n.items.size());
+        for (const RawNode& item : n.items) {
+          auto v = integer(item, type, false, std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max());
+          if (!v) return std::nullopt;
+          out.push_back(static_cast<int32_t>(*v));
+        }
+        return Value::makeIntArray(std::move(out));
+      }
+      case ValueType::FloatArray:
+      case ValueType::Point3fArray:
+      case ValueType::Normal3fArray:
+      case ValueType::TexCoord2fArray: return floatArray(n, type);
     }
     return std::nullopt;
   }

@@ -128,6 +128,30 @@ py::object toPython(const Value& v) {
       for (const std::string& s : v.get<std::vector<std::string>>()) list.append(py::str(s));
       return list;
     }
+    case ValueType::IntArray: {
+      py::list list;
+      for (int32_t i : v.get<IntArray>().items()) list.append(py::int_(i));
+      return list;
+    }
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      // float[] flat; the tuple types one tuple per item.
+      const size_t width = size_t(arrayWidth(v.type()));
+      const FloatArray& a = v.get<FloatArray>();
+      py::list list;
+      for (size_t i = 0; i < a.size(); i += width) {
+        if (width == 1) {
+          list.append(py::float_(floatToPython(a[i])));
+          continue;
+        }
+        py::list item;
+        for (size_t k = 0; k < width; ++k) item.append(py::float_(floatToPython(a[i + k])));
+        list.append(py::tuple(item));
+      }
+      return list;
+    }
   }
   return py::none();
 }
@@ -178,6 +202,28 @@ Value fromPython(py::handle o, ValueType type, const std::string& what) {
       for (const py::object& item : items(o, 0, what, "a list of strings")) list.push_back(string(item, what));
       return type == ValueType::AssetArray ? Value::makeAssetArray(std::move(list))
                                            : Value::makeStringArray(std::move(list));
+    }
+    case ValueType::IntArray: {
+      std::vector<int32_t> list;
+      for (const py::object& item : items(o, 0, what, "a list of integers"))
+        list.push_back(int32_t(integer(item, what, INT32_MIN, INT32_MAX)));
+      return Value::makeIntArray(std::move(list));
+    }
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      const size_t width = size_t(arrayWidth(type));
+      std::vector<float> flat;
+      for (const py::object& item : items(o, 0, what, valueTypeShape(type))) {
+        if (width == 1) {
+          flat.push_back(static_cast<float>(number(item, what)));
+          continue;
+        }
+        for (const py::object& c : items(item, width, what, "an item of " + std::to_string(width) + " numbers"))
+          flat.push_back(static_cast<float>(number(c, what)));
+      }
+      return Value::makeFloatArray(type, std::move(flat));
     }
   }
   throw py::type_error(what + ": unsupported type");

@@ -79,10 +79,24 @@ std::vector<PrimTypeInfo> buildTable() {
   t.push_back({PrimType::Scope, "Scope", false, false, false,
                "A grouping prim with no transform.", {}});
   t.push_back({PrimType::Mesh, "Mesh", true, true, false,
-               "Geometry loaded from an asset file (OBJ, glTF/GLB, FBX, PLY, STL, DAE).",
+               "Geometry loaded from an asset file (OBJ, glTF/GLB, FBX, PLY, STL, DAE, USD), or written inline "
+               "as USD writes it (points, faceVertexCounts, faceVertexIndices).",
                concat(gprim(), {fileAttr("asset", FileKind::Mesh, "Path of the mesh file."),
                                 attr("submesh", Value::makeString(""),
-                                     "Name of one mesh inside the file; empty means all of them.")})});
+                                     "Name of one mesh inside the file; empty means all of them."),
+                                attr("points", Value::makeFloatArray(ValueType::Point3fArray, {}),
+                                     "Inline geometry: the vertex positions (used when `asset` is empty)."),
+                                attr("faceVertexCounts", Value::makeIntArray({}), "Inline geometry: corners of each face."),
+                                attr("faceVertexIndices", Value::makeIntArray({}),
+                                     "Inline geometry: the point of each corner, face after face."),
+                                attr("normals", Value::makeFloatArray(ValueType::Normal3fArray, {}),
+                                     "Inline geometry: normals, one per face-vertex or one per point (computed when absent)."),
+                                attr("primvars:st", Value::makeFloatArray(ValueType::TexCoord2fArray, {}),
+                                     "Inline geometry: texture coordinates, one per face-vertex or one per point."),
+                                tokenAttr("subdivisionScheme", "catmullClark", {"catmullClark", "loop", "bilinear", "none"},
+                                          "Drawn as the control cage; 'none' makes computed normals faceted, the others smooth."),
+                                tokenAttr("orientation", "rightHanded", {"rightHanded", "leftHanded"},
+                                          "Winding of the front faces: counter-clockwise (rightHanded) or clockwise.")})});
   t.push_back({PrimType::Cube, "Cube", true, true, false, "An axis-aligned cube centred at the origin.",
                concat(gprim(), {positive(attr("size", Value::makeDouble(2.0), "Edge length."))})});
   t.push_back({PrimType::Sphere, "Sphere", true, true, false, "A sphere centred at the origin.",

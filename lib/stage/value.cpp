@@ -31,6 +31,11 @@ constexpr std::array kTypes = {
     TypeInfo{ValueType::Asset, "asset", "an asset path (a string)"},
     TypeInfo{ValueType::AssetArray, "asset[]", "a list of asset paths"},
     TypeInfo{ValueType::StringArray, "string[]", "a list of strings"},
+    TypeInfo{ValueType::IntArray, "int[]", "a list of integers"},
+    TypeInfo{ValueType::FloatArray, "float[]", "a list of numbers"},
+    TypeInfo{ValueType::Point3fArray, "point3f[]", "a list of points (lists of 3 numbers)"},
+    TypeInfo{ValueType::Normal3fArray, "normal3f[]", "a list of normals (lists of 3 numbers)"},
+    TypeInfo{ValueType::TexCoord2fArray, "texCoord2f[]", "a list of texture coordinates (lists of 2 numbers)"},
 };
 constexpr std::array<ValueType, kTypes.size()> kTypeList = [] {
   std::array<ValueType, kTypes.size()> list{};
@@ -55,6 +60,17 @@ std::string listText(std::initializer_list<std::string> items) {
   return out + "]";
 }
 }  // namespace
+
+int arrayWidth(ValueType type) {
+  switch (type) {
+    case ValueType::IntArray:
+    case ValueType::FloatArray: return 1;
+    case ValueType::TexCoord2fArray: return 2;
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray: return 3;
+    default: return 0;
+  }
+}
 
 std::span<const ValueType> allValueTypes() { return kTypeList; }
 std::string_view valueTypeName(ValueType type) { return info(type).name; }
@@ -128,6 +144,25 @@ std::string Value::toString() const {
       std::string out = "[";
       const auto& items = get<std::vector<std::string>>();
       for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + text::quote(items[i]);
+      return out + "]";
+    }
+    case ValueType::IntArray:
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      // Messages show the first items only: a mesh has millions.
+      const size_t width = size_t(arrayWidth(type_));
+      const size_t count = type_ == ValueType::IntArray ? get<IntArray>().size() : get<FloatArray>().size() / width;
+      std::string out = "[";
+      for (size_t i = 0; i < count && i < 4; ++i) {
+        std::vector<std::string> parts;
+        for (size_t k = 0; k < width; ++k)
+          parts.push_back(type_ == ValueType::IntArray ? std::to_string(get<IntArray>()[i])
+                                                       : formatFloat(get<FloatArray>()[i * width + k]));
+        out += (i ? ", " : "") + (width == 1 ? parts[0] : "[" + text::join(parts, ", ") + "]");
+      }
+      if (count > 4) out += ", ... (" + std::to_string(count) + " items)";
       return out + "]";
     }
   }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stage/math_types.h"
+#include "stage/shared_array.h"
 
 namespace sdg {
 
@@ -20,7 +21,14 @@ enum class ValueType {
   Int2, Float2, Float3, Color3f, Double3, Vector3d,
   Quatf, Quatd, Matrix4d,
   String, Token, Asset, AssetArray, StringArray,
+  // Numeric arrays (inline mesh geometry), shared between copies:
+  // int[] and float[] one number per item; point3f[] and normal3f[] three;
+  // texCoord2f[] two (stored flat).
+  IntArray, FloatArray, Point3fArray, Normal3fArray, TexCoord2fArray,
 };
+
+// Numbers per item of a numeric array type (0 for every other type).
+int arrayWidth(ValueType type);
 
 // Every type, in declaration order (for tables, tests and the schema).
 std::span<const ValueType> allValueTypes();
@@ -31,7 +39,8 @@ std::optional<ValueType> valueTypeFromName(std::string_view name);
 std::string_view valueTypeShape(ValueType type);
 
 using ValueStorage = std::variant<bool, int32_t, uint32_t, float, double, Vec2i, Vec2f, Vec3f, Vec3d,
-                                  Quatf, Quatd, Matrix4d, std::string, std::vector<std::string>>;
+                                  Quatf, Quatd, Matrix4d, std::string, std::vector<std::string>, IntArray,
+                                  FloatArray>;
 
 class Value {
  public:
@@ -55,6 +64,12 @@ class Value {
   static Value makeAsset(std::string s) { return Value(ValueType::Asset, std::move(s)); }
   static Value makeAssetArray(std::vector<std::string> v) { return Value(ValueType::AssetArray, std::move(v)); }
   static Value makeStringArray(std::vector<std::string> v) { return Value(ValueType::StringArray, std::move(v)); }
+  static Value makeIntArray(std::vector<int32_t> v) { return Value(ValueType::IntArray, IntArray(std::move(v))); }
+  // FloatArray, Point3fArray, Normal3fArray, TexCoord2fArray: `flat` holds
+  // arrayWidth(type) numbers per item.
+  static Value makeFloatArray(ValueType type, std::vector<float> flat) {
+    return Value(type, FloatArray(std::move(flat)));
+  }
 
   ValueType type() const { return type_; }
   const ValueStorage& storage() const { return storage_; }

@@ -52,6 +52,29 @@ Json valueToJson(const Value& v) {
     case ValueType::Asset: return v.get<std::string>();
     case ValueType::AssetArray:
     case ValueType::StringArray: return v.get<std::vector<std::string>>();
+    case ValueType::IntArray: {
+      std::span<const int32_t> items = v.get<IntArray>().items();
+      return Json(std::vector<int32_t>(items.begin(), items.end()));
+    }
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      // Flat for float[], one list per item for the tuple types.
+      const size_t width = size_t(arrayWidth(v.type()));
+      const FloatArray& a = v.get<FloatArray>();
+      Json out = Json::array();
+      for (size_t i = 0; i < a.size(); i += width) {
+        if (width == 1) {
+          out.push_back(floatJson(a[i]));
+          continue;
+        }
+        Json item = Json::array();
+        for (size_t k = 0; k < width; ++k) item.push_back(floatJson(a[i + k]));
+        out.push_back(std::move(item));
+      }
+      return out;
+    }
   }
   return nullptr;
 }

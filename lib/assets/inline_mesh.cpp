@@ -1,0 +1,154 @@
+#include "assets/inline_mesh.h"
+
+#include <cstdio>
+
+#include "core/diagnostics.h"
+
+namespace sdg {
+namespace {
+
+std::string hex(uint64_t h) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+uint64_t hashOf(const Value& v) {
+  return v.type() == ValueType::IntArray ? v.get<IntArray>().hash() : v.get<FloatArray>().hash();
+}
+
+size_t itemsOf(const Value& v) { return v.get<FloatArray>().size() / size_t(arrayWidth(v.type())); }
+
+// A primvar is per point or per face-vertex; anything else is a problem.
+std::string primvarProblem(const char* name, const Value& v, size_t points, size_t faceVertices) {
+  const size_t n = itemsOf(v);
+  if (n == points || n == faceVertices) return "";
+  return std::string(name) + " has " + std::to_string(n) + " items; expected one per point (" +
+         std::to_string(points) + ") or per face-vertex (" + std::to_string(faceVertices) + ")";
+}
+
+Vec3f item3(const Value& v, size_t i) {
+  const FloatArray& a = v.get<FloatArray>();
+  return {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
+}
+
+}  // namespace
+
+std::string InlineMesh::id() const {
+  std::string key = "inline:" + hex(hashOf(points)) + hex(hashOf(faceVertexCounts)) + hex(hashOf(faceVertexIndices));
+  key += normals ? hex(hashOf(*normals)) : "-";
+  key += st ? hex(hashOf(*st)) : "-";
+  return key + (flat ? "f" : "s") + (leftHanded ? "l" : "r");
+}
+
+std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim) {
+  const Attribute* points = prim.findAttribute("points");
+  if (!points) return nullptr;
+  auto mesh = std::make_shared<InlineMesh>();
+  mesh->points = points->value;
+  mesh->faceVertexCounts = *prim.value("faceVertexCounts");
+  mesh->faceVertexIndices = *prim.value("faceVertexIndices");
+  if (const Attribute* a = prim.findAttribute("normals")) mesh->normals = a->value;
+  if (const Attribute* a = prim.findAttribute("primvars:st")) mesh->st = a->value;
+  mesh->flat = prim.getString("subdivisionScheme") == "none";
+  mesh->leftHanded = prim.getString("orientation") == "leftHanded";
+  return mesh;
+}
+
+std::string inlineMeshProblem(const InlineMesh& mesh) {
+  const size_t points = itemsOf(mesh.points);
+  const auto counts = mesh.faceVertexCounts.get<IntArray>().items();
+  const auto indices = mesh.faceVertexIndices.get<IntArray>().items();
+  size_t total = 0;
+  for (int32_t c : counts) {
+    if (c < 0) return "faceVertexCounts has a negative count " + std::to_string(c);
+    total += size_t(c);
+  }
+  if (total != indices.size())
+    return "faceVertexCounts add up to " + std::to_string(total) + " but faceVertexIndices has " +
+           std::to_string(indices.size()) + " items";
+  for (size_t i = 0; i < indices.size(); ++i)
+    if (indices[i] < 0 || size_t(indices[i]) >= points)
+      return "faceVertexIndices[" + std::to_string(i) + "] is " + std::to_string(indices[i]) + ", outside the " +
+             std::to_string(points) + " points";
+  if (mesh.normals) {
+    if (std::string p = primvarProblem("normals", *mesh.normals, points, indices.size()); !p.empty()) return p;
+  }
+  if (mesh.st) {
+    if (std::string p = primvarProblem("primvars:st", *mesh.st, points, indices.size()); !p.empty()) return p;
+  }
+  return "";
+}
+
+MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPath) {
+  if (std::string problem = inlineMeshProblem(mesh); !problem.empty()) throw RunError(primPath + ": " + problem);
+  const size_t points = itemsOf(mesh.points);
+  const auto counts = mesh.faceVertexCounts.get<IntArray>().items();
+  const auto indices = mesh.faceVertexIndices.get<IntArray>().items();
+  // Per point unless the length says per face-vertex (a mesh whose two
+  // counts are equal reads as per face-vertex, which importers write).
+  const bool normalsPerCorner = mesh.normals && itemsOf(*mesh.normals) == indices.size();
+  const bool stPerCorner = mesh.st && itemsOf(*mesh.st) == indices.size();
+
+  // Smooth normals where none are given: area-weighted per point.
+  std::vector<Vec3f> smooth;
+  if (!mesh.normals && !mesh.flat) {
+    smooth.assign(points, Vec3f::Zero());
+    size_t first = 0;
+    for (int32_t c : counts) {
+      for (int32_t k = 1; k + 1 < c; ++k) {
+        const size_t a = size_t(indices[first]), b = size_t(indices[first + size_t(k)]),
+                     d = size_t(indices[first + size_t(k) + 1]);
+        Vec3f n = (item3(mesh.points, b) - item3(mesh.points, a)).cross(item3(mesh.points, d) - item3(mesh.points, a));
+        if (mesh.leftHanded) n = -n;
+        smooth[a] += n;
+        smooth[b] += n;
+        smooth[d] += n;
+      }
+      first += size_t(c);
+    }
+    for (Vec3f& n : smooth) n = n.norm() > 0 ? Vec3f(n.normalized()) : Vec3f(0, 0, 1);
+  }
+
+  MeshData out;
+  size_t first = 0;
+  for (int32_t c : counts) {
+    if (c >= 3) {
+      // One vertex per corner of the face, then a fan.
+      const uint32_t base = uint32_t(out.positions.size());
+      Vec3f faceNormal(0, 0, 0);
+      for (int32_t k = 1; k + 1 < c; ++k)
+        faceNormal += (item3(mesh.points, size_t(indices[first + size_t(k)])) - item3(mesh.points, size_t(indices[first]))).cross(
+            item3(mesh.points, size_t(indices[first + size_t(k) + 1])) - item3(mesh.points, size_t(indices[first])));
+      if (mesh.leftHanded) faceNormal = -faceNormal;
+      faceNormal = faceNormal.norm() > 0 ? Vec3f(faceNormal.normalized()) : Vec3f(0, 0, 1);
+      for (int32_t k = 0; k < c; ++k) {
+        const size_t corner = first + size_t(k), point = size_t(indices[corner]);
+        out.positions.push_back(item3(mesh.points, point));
+        if (mesh.normals) out.normals.push_back(item3(*mesh.normals, normalsPerCorner ? corner : point).normalized());
+        else out.normals.push_back(mesh.flat ? faceNormal : smooth[point]);
+        if (mesh.st) {
+          const FloatArray& st = mesh.st->get<FloatArray>();
+          const size_t i = stPerCorner ? corner : point;
+          out.uvs.emplace_back(st[2 * i], st[2 * i + 1]);
+        } else {
+          out.uvs.emplace_back(0.0f, 0.0f);
+        }
+      }
+      for (int32_t k = 1; k + 1 < c; ++k) {
+        out.indices.push_back(base);
+        // leftHanded faces wind clockwise: swap to keep front faces counter-clockwise.
+        out.indices.push_back(base + uint32_t(mesh.leftHanded ? k + 1 : k));
+        out.indices.push_back(base + uint32_t(mesh.leftHanded ? k : k + 1));
+      }
+    }
+    first += size_t(c);
+  }
+  MeshPart part;
+  part.indexCount = uint32_t(out.indices.size());
+  out.parts.push_back(part);
+  out.updateBounds();
+  return out;
+}
+
+}  // namespace sdg

@@ -1,0 +1,35 @@
+#pragma once
+// Geometry written on a Mesh prim itself (a USD mesh: points,
+// faceVertexCounts, faceVertexIndices, normals, primvars:st) rather than in
+// a mesh file. The arrays are shared Values, so keeping them in a MeshKey
+// is cheap; triangulation happens once per cache (renderer, colliders),
+// keyed by the arrays' content hashes.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "assets/mesh_data.h"
+#include "stage/prim.h"
+
+namespace sdg {
+
+struct InlineMesh {
+  Value points, faceVertexCounts, faceVertexIndices;
+  std::optional<Value> normals, st;
+  bool flat = false;         // subdivisionScheme "none": faceted normals where none are given
+  bool leftHanded = false;   // orientation "leftHanded": faces wind clockwise
+  std::string id() const;    // "inline:" + the content hashes
+};
+
+// The inline geometry of a Mesh prim; null when it has no authored points.
+std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim);
+
+// What is wrong with the arrays ("" when nothing): counts that do not add
+// up to the indices, indices outside the points, primvars of a length that
+// is neither per point nor per face-vertex.
+std::string inlineMeshProblem(const InlineMesh& mesh);
+
+// Fan-triangulates the faces (RunError naming `primPath` on a problem).
+MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPath);
+
+}  // namespace sdg

@@ -1,0 +1,302 @@
+// The driver of the USD mapping (usd_import.h): walks the composed prims,
+// defines each on the stage with its type, transform, schema attributes and
+// geometry, corrects units and up axis, and hands materials and per-prim
+// labels to their importers.
+#include "scene_io/usd_import.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "core/text.h"
+#include "scene_io/overrides.h"
+#include "scene_io/scene_validate.h"
+#include "scene_io/usd_import_internal.h"
+#include "stage/path.h"
+#include "usd/layer_io.h"
+
+namespace sdg {
+namespace {
+
+using usd::ComposedPrim;
+using usd::ComposedProperty;
+
+// USD types with a stage type of the same name; typeless prims and the
+// types below map to Xform (a group) with a warning naming the type.
+std::optional<PrimType> stageTypeFor(const std::string& typeName) {
+  if (typeName.empty()) return PrimType::Xform;
+  return primTypeFromName(typeName);
+}
+
+// Types whose prims are handled by their parent (GeomSubset by its Mesh,
+// shaders by their Material) or that carry nothing to draw.
+bool handledElsewhere(const std::string& typeName) {
+  return typeName == "GeomSubset" || typeName == "Shader" || typeName == "NodeGraph";
+}
+
+// Schema attributes are authored in USD under the same names; lights of
+// USD before 21.02 wrote them without the `inputs:` prefix.
+const AttributeSpec* schemaSpecFor(PrimType type, const std::string& name) {
+  if (const AttributeSpec* spec = findSchemaAttribute(type, name)) return spec;
+  if (primTypeInfo(type).light) return findSchemaAttribute(type, "inputs:" + name);
+  return nullptr;
+}
+
+// Attributes the mapping consumes by other means or that the stage has no
+// use for; the rest of the unmapped are reported once per name.
+bool quietlyIgnored(const std::string& name) {
+  static const std::vector<std::string> kNames = {
+      "xformOpOrder", "extent", "purpose", "proxyPrim", "points", "faceVertexCounts", "faceVertexIndices",
+      "normals", "subdivisionScheme", "orientation", "interpolateBoundary", "faceVaryingLinearInterpolation",
+      "triangleSubdivisionRule", "cornerIndices", "cornerSharpnesses", "creaseIndices", "creaseLengths",
+      "creaseSharpnesses", "holeIndices", "velocities", "accelerations", "material:binding"};
+  if (std::find(kNames.begin(), kNames.end(), name) != kNames.end()) return true;
+  for (const char* prefix : {"xformOp:", "primvars:", "semantic:", "semantics:", "omni:", "physics:", "physx",
+                             "material:binding", "exposedVar:", "inputs:", "outputs:", "info:", "shaping:",
+                             "shadow:", "light:", "collection:", "proxy", "ui:"})
+    if (name.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+class Importer {
+ public:
+  Importer(const usd::ComposedStage& composed, Stage& stage, const BehaviorCatalog& catalog,
+           const UsdImportOptions& options, UsdImportReport& report, Diagnostics& diag)
+      : composed_(composed), stage_(stage), catalog_(catalog), options_(options), report_(report), diag_(diag) {}
+
+  void run(const std::string& sourceRoot, const std::string& mountPath) {
+    sourceRoot_ = sourceRoot;
+    mountPath_ = mountPath;
+    usd::LayerUnits into;
+    into.metersPerUnit = stage_.metadata().metersPerUnit;
+    into.upAxis = stage_.metadata().upAxis;
+    const std::vector<XformOp> rootUnits = usd_map::unitsOps(composed_.units, into);
+    const double scale = usd_map::unitsScale(composed_.units, into);
+    if (sourceRoot == "/") {
+      for (const std::string& path : composed_.rootPrims())
+        if (const ComposedPrim* prim = composed_.prim(path)) importPrim(*prim, stage_.pseudoRoot(), rootUnits, scale);
+      return;
+    }
+    const ComposedPrim* prim = composed_.prim(sourceRoot);
+    if (!prim) {
+      diag_.error(SourceLoc{composed_.rootLayer, 0, 0}, "no prim " + sourceRoot + " in " + composed_.rootLayer);
+      return;
+    }
+    Prim* parent = stage_.find(std::string(path::parent(mountPath)));
+    importPrim(*prim, *parent, rootUnits, scale);
+  }
+
+  std::string mapPath(const std::string& source) const {
+    if (sourceRoot_ == "/") return mountPath_ == "/" ? source : mountPath_ + source;
+    if (source == sourceRoot_) return mountPath_;
+    if (source.rfind(sourceRoot_ + "/", 0) == 0) return mountPath_ + source.substr(sourceRoot_.size());
+    return source;  // outside the mounted scope: left as written (the binding check reports it)
+  }
+
+ private:
+  void warnOnce(const SourceLoc& loc, const std::string& key, const std::string& message) {
+    if (!warned_.insert(key).second) return;
+    diag_.warning(loc, message);
+    report_.warnings.push_back(message);
+  }
+
+  // `outerUnits` go before the prim's own ops (the root layer's units into
+  // the stage's); a units change on the prim goes after them, as Omniverse
+  // appends its unitsResolve ops.
+  void importPrim(const ComposedPrim& prim, Prim& parent, const std::vector<XformOp>& outerUnits, double unitScale) {
+    if (!prim.defined || prim.abstract || !prim.active) return;
+    if (handledElsewhere(prim.typeName)) return;
+    std::optional<PrimType> type = stageTypeFor(prim.typeName);
+    if (!type) {
+      warnOnce(prim.loc, "type:" + prim.typeName,
+               prim.path + ": USD type " + prim.typeName + " has no stage counterpart; imported as an Xform (a group)");
+      type = PrimType::Xform;
+    }
+    const std::string stagePath = mapPath(prim.path);
+    Prim& p = stage_.definePrim(stagePath, *type);
+    p.loc() = prim.loc;
+    const Matrix4d parentWorld = stage_.worldMatrix(parent);
+    std::vector<XformOp> ops = outerUnits;
+    for (XformOp& op : usd_map::xformOpsOf(prim, parentWorld, diag_)) ops.push_back(std::move(op));
+    double scale = unitScale;
+    if (prim.unitsChange) {
+      for (XformOp& op : usd_map::unitsOps(prim.unitsChange->asset, prim.unitsChange->into)) ops.push_back(std::move(op));
+      scale *= usd_map::unitsScale(prim.unitsChange->asset, prim.unitsChange->into);
+    }
+    if (primTypeInfo(*type).xformable) p.xformOps() = std::move(ops);
+    else if (!ops.empty() && !(ops.size() == outerUnits.size()))
+      warnOnce(prim.loc, "xform:" + prim.path, prim.path + ": a " + prim.typeName + " has no transform; its xform ops are ignored");
+
+    if (*type == PrimType::Material) {
+      importUsdMaterial(composed_, prim, p, diag_, report_);
+      importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_,
+                          options_, report_, diag_);
+      return;  // its shaders are the material's
+    }
+    importAttributes(prim, p, *type, scale);
+    if (*type == PrimType::Mesh) importMesh(prim, p);
+    importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
+                        report_, diag_);
+    for (const std::string& child : prim.children)
+      if (const ComposedPrim* c = composed_.prim(prim.path == "/" ? "/" + child : prim.path + "/" + child))
+        importPrim(*c, p, {}, scale);
+  }
+
+  void importAttributes(const ComposedPrim& prim, Prim& p, PrimType type, double unitScale) {
+    for (const ComposedProperty& prop : prim.properties) {
+      if (prop.isRelationship || prop.value.empty()) continue;
+      const AttributeSpec* spec = schemaSpecFor(type, prop.name);
+      if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
+        if (!spec && !quietlyIgnored(prop.name))
+          warnOnce(prop.loc, "attr:" + prim.typeName + ":" + prop.name,
+                   prim.path + "." + prop.name + ": not a " + std::string(primTypeInfo(type).name) +
+                       " attribute of the stage; ignored (and on every other prim)");
+        continue;
+      }
+      std::optional<Value> v = usd_map::toStageValue(prop.value, spec->type);
+      if (!v) {
+        diag_.error(prop.loc, prim.path + "." + prop.name + ": expected " + std::string(valueTypeShape(spec->type)) +
+                                  " (" + std::string(valueTypeName(spec->type)) + "), found " + prop.typeName);
+        continue;
+      }
+      if (type == PrimType::Camera && spec->name == "clippingRange") {
+        // Distances in the layer's units, into the stage's.
+        const Vec2f r = v->get<Vec2f>();
+        v = Value::makeFloat2(float(r.x() * unitScale), float(r.y() * unitScale));
+      }
+      if (!spec->allowedTokens.empty() &&
+          std::find(spec->allowedTokens.begin(), spec->allowedTokens.end(), v->get<std::string>()) ==
+              spec->allowedTokens.end()) {
+        diag_.error(prop.loc, prim.path + "." + prop.name + ": expected one of " + text::join(spec->allowedTokens, ", ") +
+                                  ", found " + text::quote(v->get<std::string>()));
+        continue;
+      }
+      p.setAttribute(spec->name, *v).loc = prop.loc;
+    }
+  }
+
+  // The mesh's faces, less those a GeomSubset with a material binding
+  // takes: each such subset becomes a child Mesh of its faces, bound to its
+  // material (the stage binds materials per prim).
+  void importMesh(const ComposedPrim& prim, Prim& p) {
+    std::vector<int32_t> rest;
+    std::vector<std::pair<const ComposedPrim*, std::vector<int32_t>>> subsets;
+    for (const std::string& child : prim.children) {
+      const ComposedPrim* c = composed_.prim(prim.path + "/" + child);
+      if (!c || c->typeName != "GeomSubset" || !c->active) continue;
+      const ComposedProperty* binding = c->property("material:binding");
+      if (!binding || binding->targets.empty()) continue;
+      const ComposedProperty* indices = c->property("indices");
+      const ComposedProperty* elementType = c->property("elementType");
+      if (elementType && !elementType->value.empty() && elementType->value.strings[0] != "face") {
+        warnOnce(c->loc, "subset:" + c->path, c->path + ": only face subsets bind materials; ignored");
+        continue;
+      }
+      std::vector<int32_t> faces;
+      if (indices)
+        for (double d : indices->value.numbers) faces.push_back(int32_t(d));
+      subsets.emplace_back(c, std::move(faces));
+    }
+    if (subsets.empty()) {
+      usd_map::importMeshGeometry(prim, p, nullptr, diag_);
+      return;
+    }
+    const ComposedProperty* counts = prim.property("faceVertexCounts");
+    const size_t faceCount = counts ? counts->value.numbers.size() : 0;
+    std::vector<bool> taken(faceCount, false);
+    for (const auto& [subset, faces] : subsets) {
+      for (int32_t f : faces) {
+        if (f < 0 || size_t(f) >= faceCount) {
+          diag_.error(subset->loc, subset->path + ".indices: face " + std::to_string(f) + " is outside the " +
+                                       std::to_string(faceCount) + " faces of " + prim.path);
+          return;
+        }
+        taken[size_t(f)] = true;
+      }
+    }
+    for (size_t f = 0; f < faceCount; ++f)
+      if (!taken[f]) rest.push_back(int32_t(f));
+    usd_map::importMeshGeometry(prim, p, &rest, diag_);
+    for (const auto& [subset, faces] : subsets) {
+      Prim& s = stage_.definePrim(mapPath(subset->path), PrimType::Mesh);
+      s.loc() = subset->loc;
+      for (const auto& [name, attr] : p.attributes())
+        if (name == "doubleSided" || name == "primvars:displayColor" || name == "subdivisionScheme" ||
+            name == "orientation")
+          s.setAttribute(name, attr.value).loc = attr.loc;
+      usd_map::importMeshGeometry(prim, s, &faces, diag_);
+      importUsdPrimLabels(composed_, *subset, s, [this](const std::string& x) { return mapPath(x); }, catalog_,
+                          options_, report_, diag_);
+    }
+  }
+
+  const usd::ComposedStage& composed_;
+  Stage& stage_;
+  const BehaviorCatalog& catalog_;
+  const UsdImportOptions& options_;
+  UsdImportReport& report_;
+  Diagnostics& diag_;
+  std::string sourceRoot_, mountPath_;
+  std::set<std::string> warned_;
+};
+
+// What a USD stage does not say: one BasicWriter writing rgb, tight boxes
+// and semantic segmentation, and the first camera (docs/usd.md).
+void addDefaultRunSettings(Scene& scene) {
+  WriterConfig writer;
+  writer.type = "BasicWriter";
+  writer.options = OptionSet(findWriterType("BasicWriter")->options);
+  for (const char* flag : {"rgb", "bounding_box_2d_tight", "semantic_segmentation"})
+    writer.options.set(flag, Value::makeBool(true));
+  scene.writers.push_back(std::move(writer));
+  std::string firstCamera;
+  scene.stage.traverse([&](const Prim& p) {
+    if (firstCamera.empty() && p.type() == PrimType::Camera) firstCamera = p.path();
+  });
+  if (!firstCamera.empty()) scene.capture.set("cameras", Value::makeStringArray({firstCamera}));
+}
+
+}  // namespace
+
+void importUsdPrims(const usd::ComposedStage& composed, const std::string& sourceRoot, Stage& stage,
+                    const std::string& mountPath, const BehaviorCatalog& catalog, const UsdImportOptions& options,
+                    UsdImportReport& report, Diagnostics& diag) {
+  for (const std::string& layer : composed.layers)
+    if (std::find(report.layers.begin(), report.layers.end(), layer) == report.layers.end())
+      report.layers.push_back(layer);
+  for (const std::string& w : composed.warnings) report.warnings.push_back(w);
+  Importer importer(composed, stage, catalog, options, report, diag);
+  importer.run(sourceRoot, mountPath);
+}
+
+Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, const UsdImportOptions& options,
+                     UsdImportReport& report) {
+  usd::ComposeOptions composeOptions;
+  composeOptions.variantOverrides = options.variants;
+  usd::ComposedStage composed;
+  try {
+    composed = usd::composeStage(path, [](const std::string& id) { return usd::readLayerFile(id); }, composeOptions);
+  } catch (const usd::UsdError& e) {
+    // what() starts with the location SceneError adds again.
+    std::string message = e.what();
+    const std::string where = e.loc().str() + ": ";
+    if (e.loc().known() && message.rfind(where, 0) == 0) message = message.substr(where.size());
+    throw SceneError(e.loc(), message);
+  }
+  Scene scene;
+  scene.sourcePath = path;
+  scene.sourceDir = std::filesystem::path(path).parent_path().string();
+  if (scene.sourceDir.empty()) scene.sourceDir = ".";
+  // The stage is Z-up metres; the root layer's units become a transform.
+  if (auto it = composed.layerMetadata.find("timeCodesPerSecond");
+      it != composed.layerMetadata.end() && usd::isNumeric(it->second.kind) && !it->second.numbers.empty() &&
+      it->second.numbers[0] >= 1)
+    scene.stage.metadata().timeCodesPerSecond = it->second.numbers[0];
+  Diagnostics diag;
+  importUsdPrims(composed, "/", scene.stage, "/", catalog, options, report, diag);
+  diag.throwIfErrors();
+  addDefaultRunSettings(scene);
+  return scene;
+}
+
+}  // namespace sdg
