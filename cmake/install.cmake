@@ -39,6 +39,7 @@ set(SDG_PLUGIN_HEADERS
   stage/math_types.h
   stage/prim.h
   stage/prim_types.h
+  stage/shared_array.h
   stage/stage.h
   stage/value.h
   stage/xform.h)

@@ -10,7 +10,7 @@
 // layout; a plugin built for another version is refused with a clear message.
 #include "behavior/registry.h"
 
-#define SDG_PLUGIN_ABI_VERSION 2
+#define SDG_PLUGIN_ABI_VERSION 3
 
 extern "C" {
 typedef int (*SdgPluginAbiVersionFn)(void);
