@@ -241,6 +241,7 @@ class Exporter {
     const std::string& path = prim.path();
     Spec& spec = primSpec(path, usd::Specifier::Def, std::string(prim.typeInfo().name));
     std::vector<std::string> apiSchemas;
+    usd::Dictionary customData;
     if (prim.type() == PrimType::Mesh) writeMeshReference(prim, spec);
     if (prim.type() == PrimType::Material) writeMaterial(prim);
     else writeAttributes(prim);
@@ -251,6 +252,12 @@ class Exporter {
       layer_.specs[path + ".material:binding"].fields["bindMaterialAs"] =
           usd::Value::text(Kind::Token, prim.material()->strength);
     }
+    for (const auto& [key, value] : prim.metadata()) {
+      if (key == "kind") spec.fields[field::kKind] = usd::Value::text(Kind::Token, value);
+      else if (key == "documentation") spec.fields[field::kDocumentation] = usd::Value::text(Kind::String, value);
+      else customData[key] = usd::Value::text(Kind::String, value);
+    }
+    if (!customData.empty()) spec.fields[field::kCustomData] = usd::Value::dict(std::move(customData));
     writeSemantics(prim, apiSchemas);
     writeBehaviors(prim);
     prependApiSchemas(spec, apiSchemas);

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "behavior/registry.h"
-#include "behaviors/builtin_behaviors.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "usd/compose.h"
 #include "usd/layer_io.h"
 
