@@ -64,6 +64,7 @@ void addVerify(CLI::App& app, int& exitCode);
 void addMerge(CLI::App& app, int& exitCode);
 void addNewBehavior(CLI::App& app, int& exitCode);
 void addFlatten(CLI::App& app, int& exitCode);
+void addExportUsd(CLI::App& app, int& exitCode);
 void addStudio(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   cli::addValidate(app, exitCode);
   cli::addInspect(app, exitCode);
   cli::addFlatten(app, exitCode);
+  cli::addExportUsd(app, exitCode);
   cli::addSchema(app, exitCode);
   cli::addDescribe(app, exitCode);
   cli::addRun(app, exitCode);

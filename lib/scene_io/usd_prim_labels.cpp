@@ -298,13 +298,21 @@ void importBehaviors(const usd::ComposedPrim& prim, Prim& stagePrim,
 
 }  // namespace
 
+// Isaac's script file of each built-in behavior (import and export).
+const std::pair<const char*, const char*> kIsaacScripts[] = {
+    {"location_randomizer.py", "locationRandomizer"}, {"rotation_randomizer.py", "rotationRandomizer"},
+    {"look_at_behavior.py", "lookAtBehavior"},         {"light_randomizer.py", "lightRandomizer"},
+    {"texture_randomizer.py", "textureRandomizer"},   {"volume_stack_randomizer.py", "volumeStackRandomizer"}};
+
 std::string builtinForIsaacScript(const std::string& fileName) {
-  static const std::pair<const char*, const char*> kScripts[] = {
-      {"location_randomizer.py", "locationRandomizer"}, {"rotation_randomizer.py", "rotationRandomizer"},
-      {"look_at_behavior.py", "lookAtBehavior"},         {"light_randomizer.py", "lightRandomizer"},
-      {"texture_randomizer.py", "textureRandomizer"},   {"volume_stack_randomizer.py", "volumeStackRandomizer"}};
-  for (const auto& [file, behavior] : kScripts)
+  for (const auto& [file, behavior] : kIsaacScripts)
     if (fileName == file) return behavior;
+  return "";
+}
+
+std::string isaacScriptForBuiltin(const std::string& behaviorName) {
+  for (const auto& [file, behavior] : kIsaacScripts)
+    if (behaviorName == behavior) return file;
   return "";
 }
 

@@ -12,6 +12,8 @@ namespace sdg {
 // the built-ins of the same behavior ("location_randomizer.py" ->
 // "locationRandomizer"). "" for any other file name.
 std::string builtinForIsaacScript(const std::string& fileName);
+// The inverse, for the export: "locationRandomizer" -> "location_randomizer.py"; "" for others.
+std::string isaacScriptForBuiltin(const std::string& behaviorName);
 
 // The user behavior scripts (`.py` files that use sdgbehave's script API)
 // that the stage's prims list in omni:scripting:scripts, absolute, each
