@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "core/diagnostics.h"
 #include "core/log.h"
 #include "core/file_io.h"
+#include "core/text.h"
 #include "run/dataset_run.h"
 #include "run/frame_plan.h"
 #include "run/output_folder.h"
@@ -34,7 +36,24 @@ struct RunArgs {
   std::string shard;
   std::optional<uint64_t> shardIndex, shardCount;
   bool resume = false;
+  std::vector<std::string> cameras;
 };
+
+// --camera: the render products (capture.cameras), each a Camera prim of
+// the stage; anything else is bad usage naming the flag.
+void selectCameras(LoadedScene& loaded, const std::vector<std::string>& cameras) {
+  if (cameras.empty()) return;
+  std::vector<std::string> names;
+  loaded.scene.stage.traverse([&](const Prim& p) {
+    if (p.type() == PrimType::Camera) names.push_back(p.path());
+  });
+  for (const std::string& camera : cameras)
+    if (std::find(names.begin(), names.end(), camera) == names.end())
+      throw SceneError(SourceLoc{"--camera", 0, 0},
+                       text::quote(camera) + " is not a Camera of the scene; cameras: " +
+                           (names.empty() ? std::string("none") : text::join(names, ", ")) + text::didYouMean(camera, names));
+  loaded.scene.capture.set("cameras", Value::makeStringArray(cameras));
+}
 
 // What the flags ask of the frame plan (run/frame_plan.h decides it).
 FramePlanFlags framePlanFlags(const RunArgs& args) {
@@ -75,6 +94,10 @@ void addRun(CLI::App& app, int& exitCode) {
       ->type_name("i/k");
   cmd->add_option("--shard-index", args->shardIndex, "Same as the i of --shard")->type_name("i");
   cmd->add_option("--shard-count", args->shardCount, "Same as the k of --shard")->type_name("k");
+  cmd->add_option("--camera", args->cameras,
+                  "Render from this Camera prim (repeat for several; overrides capture.cameras)")
+      ->type_name("PATH")
+      ->allow_extra_args(false);
   cmd->add_flag("--resume", args->resume,
                 "Continue an interrupted run in --out: keep frames the manifest lists with matching files, redo the rest");
   cmd->footer(
@@ -86,6 +109,7 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->callback([args, &exitCode] {
     const auto loadStart = std::chrono::steady_clock::now();
     LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
+    selectCameras(loaded, args->cameras);
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;

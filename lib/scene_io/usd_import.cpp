@@ -11,6 +11,7 @@
 #include "core/text.h"
 #include "scene_io/overrides.h"
 #include "scene_io/scene_validate.h"
+#include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
 #include "stage/path.h"
 #include "usd/layer_io.h"
@@ -241,8 +242,10 @@ class Importer {
 };
 
 // What a USD stage does not say: one BasicWriter writing rgb, tight boxes
-// and semantic segmentation, and the first camera (docs/usd.md).
+// and semantic segmentation, a framing camera and lights where it has none
+// (usd_default_view.h), and the first camera (docs/usd.md).
 void addDefaultRunSettings(Scene& scene) {
+  addDefaultCameraAndLights(scene);
   WriterConfig writer;
   writer.type = "BasicWriter";
   writer.options = OptionSet(findWriterType("BasicWriter")->options);

@@ -67,6 +67,11 @@ const Layer& LayerCache::layer(const std::string& identifier, const SourceLoc& f
   std::unique_ptr<Layer> layer;
   try {
     layer = std::make_unique<Layer>(reader_(identifier));
+  } catch (const UsdError& e) {
+    // The root layer's own syntax errors are reported at their file:line:col
+    // first, as a YAML scene's are; an arc's name the arc that read them.
+    if (!from.known() && e.loc().line > 0) throw;
+    throw usdErrorAt(from, arcText + " (" + identifier + "): " + e.what());
   } catch (const std::exception& e) {
     throw usdErrorAt(from, arcText + " (" + identifier + "): " + e.what());
   }

@@ -4,6 +4,8 @@
 // inactive and instanceable prims.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "assets/inline_mesh.h"
 #include "assets/mesh_source.h"
 #include "scene_io/scene_fixtures.h"
@@ -66,6 +68,45 @@ TEST_CASE("usd import: a cube, a mesh, a camera and lights make a runnable scene
   CHECK(mesh.bounds.sizes().isApprox(Eigen::Vector3f(6, 6, 0)));
   CHECK(mesh.uvs[2].isApprox(Eigen::Vector2f(1, 1)));
   CHECK(mesh.normals[0].isApprox(Vec3f(0, 0, 1)));
+}
+
+TEST_CASE("usd import: a stage without camera or light gets a framing camera and lights", "[usd_import]") {
+  Scene scene = importFile("no_camera.usda");
+  // The cube: 1 m, standing on the ground 3 m along +X once Y-up cm is Z-up m.
+  const Eigen::AlignedBox3d cube = worldBounds(scene.stage, "/Asset/Body");
+  CHECK(cube.min().isApprox(Vec3d(2.5, -0.5, 0), 1e-9));
+  CHECK(cube.max().isApprox(Vec3d(3.5, 0.5, 1), 1e-9));
+  REQUIRE(scene.stage.find("/DefaultCamera_1"));  // the stage's own /DefaultCamera is an Xform
+  CHECK(scene.stage.find("/DefaultCamera")->type() == PrimType::Xform);
+  const Prim& cam = *scene.stage.find("/DefaultCamera_1");
+  CHECK(cam.type() == PrimType::Camera);
+  CHECK(scene.capture.get("cameras").get<std::vector<std::string>>() == std::vector<std::string>{"/DefaultCamera_1"});
+  CHECK(scene.stage.find("/DefaultLight")->type() == PrimType::DistantLight);
+  CHECK(scene.stage.find("/DefaultDome")->type() == PrimType::DomeLight);
+  // 60 degrees across; looking at the cube's centre; every corner in view, in front of the near plane.
+  const double tanHalf = std::tan(30.0 * 3.14159265358979323846 / 180.0);
+  CHECK(cam.getFloat("horizontalAperture") / (2.0 * cam.getFloat("focalLength")) == Approx(tanHalf).epsilon(1e-6));
+  const Matrix4d cameraFromWorld = scene.stage.worldMatrix(cam).inverse();
+  const Vec3d centre = (cameraFromWorld * cube.center().homogeneous()).head<3>();
+  CHECK(std::abs(centre.x()) < 1e-9);
+  CHECK(std::abs(centre.y()) < 1e-9);
+  const Vec2f clip = cam.value("clippingRange")->get<Vec2f>();
+  for (int c = 0; c < 8; ++c) {
+    const Vec3d p = (cameraFromWorld * cube.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).homogeneous()).head<3>();
+    CHECK(-p.z() > clip.x());
+    CHECK(-p.z() < clip.y());
+    CHECK(std::abs(p.x() / p.z()) < tanHalf);
+    CHECK(std::abs(p.y() / p.z()) < tanHalf);  // square default resolution: the same field vertically
+  }
+  // Upright: the camera's up (+Y) has a positive world Z.
+  CHECK(scene.stage.worldMatrix(cam)(2, 1) > 0.5);
+}
+
+TEST_CASE("usd import: a stage's own camera and lights are kept, nothing added", "[usd_import]") {
+  Scene scene = importFile("cube_camera.usda");
+  CHECK(!scene.stage.find("/DefaultCamera"));
+  CHECK(!scene.stage.find("/DefaultLight"));
+  CHECK(!scene.stage.find("/DefaultDome"));
 }
 
 TEST_CASE("usd import: every xform op form composes as USD does", "[usd_import]") {
