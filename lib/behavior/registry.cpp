@@ -17,6 +17,17 @@ void BehaviorRegistry::add(BehaviorSpec spec, BehaviorFactory factory, std::stri
   sources_.push_back(std::move(source));
 }
 
+void BehaviorRegistry::replaceBuiltin(BehaviorSpec spec, BehaviorFactory factory, std::string source) {
+  for (size_t i = 0; i < catalog_.specs.size(); ++i)
+    if (catalog_.specs[i].name == spec.name && sources_[i] == "built-in") {
+      catalog_.specs[i] = std::move(spec);
+      factories_[i] = std::move(factory);
+      sources_[i] = std::move(source);
+      return;
+    }
+  add(std::move(spec), std::move(factory), std::move(source));
+}
+
 std::unique_ptr<Behavior> BehaviorRegistry::create(std::string_view name) const {
   for (size_t i = 0; i < catalog_.specs.size(); ++i)
     if (catalog_.specs[i].name == name) return factories_[i]();

@@ -19,6 +19,9 @@ class BehaviorRegistry {
  public:
   // A second behavior of the same name is an error naming both sources.
   void add(BehaviorSpec spec, BehaviorFactory factory, std::string source = "built-in");
+  // An Isaac Sim script whose namespace is a built-in's (locationRandomizer,
+  // ...) takes the built-in's place in this registry; otherwise as add().
+  void replaceBuiltin(BehaviorSpec spec, BehaviorFactory factory, std::string source);
   const BehaviorCatalog& catalog() const { return catalog_; }
   std::unique_ptr<Behavior> create(std::string_view name) const;
   const std::string& sourceOf(std::string_view name) const;

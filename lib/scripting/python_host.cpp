@@ -17,6 +17,14 @@ extern const char kSdgbehavePySource[];
 // pybind11's static self-registration lives in an object file nothing else
 // references, which the linker may leave out of the binary.
 extern "C" PyObject* pybind11_init_impl__sdgbehave();
+// The Isaac Sim layer's modules (lib/scripting/isaac_compat), embedded by
+// embed_package.cmake.
+struct SdgEmbeddedFile {
+  const char* path;
+  const char* source;
+};
+extern const SdgEmbeddedFile kIsaacCompatFiles[];
+extern const size_t kIsaacCompatFilesCount;
 
 namespace sdg::scripting {
 namespace {
@@ -95,6 +103,10 @@ PythonHost::PythonHost() {
   gScriptThreadId = pthread_self();
   gScriptThread = PyThreadState_Get();
   api_.attr("_install_watchdog_signal")(watchdogSignal());
+  py::dict embedded;
+  for (size_t i = 0; i < kIsaacCompatFilesCount; ++i)
+    embedded[py::str(kIsaacCompatFiles[i].path)] = py::str(kIsaacCompatFiles[i].source);
+  api_.attr("_install_embedded")(embedded);
 }
 
 PyThreadState* scriptThreadState() { return gScriptThread; }

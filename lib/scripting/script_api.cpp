@@ -217,6 +217,24 @@ Payload payloadFromPython(const py::dict& d, const std::string& what) {
   return payload;
 }
 
+
+// The op named `name` ("xformOp:translate", ...) on the prim, or null.
+XformOp* findOp(Prim& prim, const std::string& name) {
+  for (XformOp& op : prim.xformOps())
+    if (op.attributeName() == name) return &op;
+  return nullptr;
+}
+
+// An op's starting value: identity for its kind.
+Value identityOpValue(XformOpKind kind) {
+  switch (xformOpValueType(kind)) {
+    case ValueType::Quatd: return Value::makeQuatd(Quatd::Identity());
+    case ValueType::Matrix4d: return Value::makeMatrix4d(Matrix4d::Identity());
+    case ValueType::Double: return Value::makeDouble(0.0);
+    default: return Value::makeDouble3(kind == XformOpKind::Scale ? Vec3d::Ones() : Vec3d::Zero());
+  }
+}
+
 }  // namespace
 
 PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
@@ -315,6 +333,46 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
              return names;
            },
            "Names of the authored attributes, sorted.")
+      .def("attribute_type",
+           [](const PrimHandle& h, const std::string& name) -> py::object {
+             Prim& p = h.prim();
+             const Value* v = parseXformOpName(name) ? (findOp(p, name) ? &findOp(p, name)->value : nullptr)
+                                                     : p.value(name);
+             return v ? py::object(py::str(std::string(valueTypeName(v->type())))) : py::object(py::none());
+           },
+           py::arg("name"), "The USD type name of an attribute or xform op ('double3', 'quatd', ...), or None.")
+      .def("set_xform_op",
+           [](PrimHandle& h, const std::string& name, py::handle value) {
+             Prim& p = h.prim();
+             XformOp* op = findOp(p, name);
+             if (!op) throw py::value_error(h.what(name) + ": the prim has no such xform op");
+             Value v = fromPython(value, op->value.type(), h.what(name));
+             if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
+             findOp(p, name)->value = std::move(v);
+           },
+           py::arg("name"), py::arg("value"), "Writes one xform op's value, in the op's own type.")
+      .def("add_xform_op",
+           [](PrimHandle& h, const std::string& name) {
+             Prim& p = h.prim();
+             std::optional<XformOp> op = parseXformOpName(name);
+             if (!op) throw py::value_error(h.what(name) + ": not an xform op name such as 'xformOp:translate'");
+             if (!p.typeInfo().xformable)
+               throw py::value_error(h.path + " is a " + std::string(p.typeInfo().name) + ", which has no transform");
+             if (findOp(p, name)) throw py::value_error(h.what(name) + ": the op already exists");
+             if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
+             op->value = identityOpValue(op->kind);
+             p.xformOps().push_back(std::move(*op));
+           },
+           py::arg("name"), "Appends an xform op (last in xformOpOrder) holding the identity.")
+      .def("remove_attribute",
+           [](PrimHandle& h, const std::string& name) {
+             Prim& p = h.prim();
+             if (parseXformOpName(name)) throw py::value_error(h.what(name) + ": xform ops cannot be removed");
+             if (!p.findAttribute(name)) return false;
+             if (!h.ctx->created(p)) h.ctx->journal().beforeAttributeWrite(p, name);
+             return p.removeAttribute(name);
+           },
+           py::arg("name"), "Removes an authored attribute (restored on stop or destroy); False if absent.")
       .def("set_attribute", &setAttribute, py::arg("name"), py::arg("value"), py::arg("type") = py::none(),
            "Writes an attribute, checked against its type; type= creates a custom attribute.")
       .def_property_readonly("xform_ops",

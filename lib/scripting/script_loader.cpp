@@ -9,6 +9,7 @@
 
 #include "behavior/run_activity.h"
 #include "core/diagnostics.h"
+#include "core/log.h"
 #include "core/text.h"
 #include "scripting/python_host.h"
 #include "scripting/script_behavior.h"
@@ -27,6 +28,7 @@ struct ScriptedBehavior {
   py::object cls;
   std::string rngStream;
   SourceLoc loc;  // the class statement
+  bool isaac = false;  // an Isaac Sim BehaviorScript (omni.behavior.scripting.core)
 };
 
 struct LoadedScript {
@@ -149,6 +151,7 @@ AttributeSpec readVariable(py::handle record, const std::string& ns, const Sourc
 ScriptedBehavior readBehaviorClass(const py::tuple& found, const std::string& file, Diagnostics& diag) {
   ScriptedBehavior b;
   b.cls = found[0];
+  b.isaac = py::hasattr(b.cls, "_isaac_script");
   const std::string className = found[1].cast<std::string>();
   const SourceLoc classLoc{file, found[2].cast<int>(), 1};
   b.loc = classLoc;
@@ -278,6 +281,15 @@ void loadScript(BehaviorRegistry& registry, const std::string& path, const Sourc
   if (it == loadedScripts().end()) it = loadedScripts().emplace(canonical, runScript(path, canonical)).first;
   const LoadedScript& script = it->second;
   for (const ScriptedBehavior& b : script.behaviors) {
+    if (b.isaac && registry.catalog().find(b.spec.name) && registry.sourceOf(b.spec.name) == "built-in") {
+      log::info(b.spec.name + ": the Isaac Sim script " + script.source + " stands in for the built-in behavior");
+      py::object cls = b.cls;
+      std::string rngStream = b.rngStream, source = script.source;
+      registry.replaceBuiltin(
+          b.spec, [cls, rngStream, source] { return std::make_unique<ScriptBehavior>(cls, rngStream, source); },
+          script.source);
+      continue;
+    }
     if (registry.catalog().find(b.spec.name)) {
       const std::string& other = registry.sourceOf(b.spec.name);
       if (other == script.source) continue;  // this script, loaded again (another asset, --script and scripts:)

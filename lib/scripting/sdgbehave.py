@@ -219,6 +219,67 @@ def _entry_lines(tree):
     return lines
 
 
+class _EmbeddedFinder:
+    """Imports the Python packages compiled into sdgbehave (the Isaac Sim
+    layer: pxr, carb, omni, usdrt, isaacsim) from their embedded sources;
+    tracebacks name them isaac_compat/<path>."""
+
+    PREFIX = "isaac_compat/"
+
+    def __init__(self, files):
+        self._modules = {}
+        for path, source in files.items():
+            parts = path[:-3].split("/")
+            package = parts[-1] == "__init__"
+            if package:
+                parts = parts[:-1]
+            self._modules[".".join(parts)] = (path, source, package)
+
+    def find_spec(self, fullname, path=None, target=None):
+        entry = self._modules.get(fullname)
+        if entry is None:
+            return None
+        return _importlib_util.spec_from_loader(fullname, self, origin=self.PREFIX + entry[0], is_package=entry[2])
+
+    def create_module(self, spec):
+        return None
+
+    def exec_module(self, module):
+        path, source, _package = self._modules[module.__spec__.name]
+        module.__file__ = self.PREFIX + path
+        exec(compile(source, self.PREFIX + path, "exec"), module.__dict__)
+
+    def get_source(self, fullname):
+        entry = self._modules.get(fullname)
+        return entry[1] if entry else None
+
+
+def _install_embedded(files):
+    _sys.meta_path.insert(0, _EmbeddedFinder(dict(files)))
+
+
+def _join_isaac_trees(path):
+    """An Isaac Sim extension tree above the script (a folder holding
+    isaacsim/, as NVIDIA ships isaacsim.replicator.behavior) joins the
+    layer's isaacsim package, so the script's own imports of
+    isaacsim.replicator.behavior.* find the real files."""
+    folder = _os.path.dirname(_os.path.abspath(path))
+    while True:
+        tree = _os.path.join(folder, "isaacsim")
+        if _os.path.isdir(tree):
+            import isaacsim
+            if tree not in isaacsim.__path__:
+                isaacsim.__path__.append(tree)
+        parent = _os.path.dirname(folder)
+        if parent == folder:
+            return
+        folder = parent
+
+
+def _is_isaac_class(obj):
+    return isinstance(obj, type) and issubclass(obj, Behavior) and getattr(obj, "_isaac_script", False)
+
+
 def _load_script(path, module_name):
     """Runs the script as module `module_name` (its folder first on sys.path)
     and returns [(class, class line, VARIABLES_TO_EXPOSE line, entry lines)]
@@ -229,6 +290,7 @@ def _load_script(path, module_name):
     with open(path, "rb") as f:
         source = f.read()
     tree = _ast.parse(source, filename=path)
+    _join_isaac_trees(path)
     spec = _importlib_util.spec_from_file_location(module_name, path)
     module = _importlib_util.module_from_spec(spec)
     _sys.modules[module_name] = module
@@ -240,6 +302,15 @@ def _load_script(path, module_name):
     lines = _entry_lines(tree)
     found = []
     for obj in list(vars(module).values()):
+        if _is_isaac_class(obj) and obj.__module__ == module_name:
+            # Isaac Sim's script manager runs every BehaviorScript class the
+            # file defines; the namespace is BEHAVIOR_NS, else the class name.
+            from omni.behavior.scripting import core as _isaac_core
+            if "BEHAVIOR_NS" not in obj.__dict__:
+                obj.BEHAVIOR_NS = _isaac_core._namespace(obj)
+            class_line, var_line, entries = lines.get(obj.__name__, (1, 1, []))
+            found.append((obj, obj.__name__, class_line, var_line, entries, _isaac_core._sdg_variables(obj)))
+            continue
         if isinstance(obj, type) and issubclass(obj, Behavior) and obj.__module__ == module_name \
                 and "BEHAVIOR_NS" in obj.__dict__:
             class_line, var_line, entries = lines.get(obj.__name__, (1, 1, []))

@@ -1,0 +1,21 @@
+# Writes every .py file under DIR into OUT as the C++ array VAR of
+# {relative path, source} records, so a whole Python package (the Isaac Sim
+# layer) ships inside the binary; sdgbehave.py's _EmbeddedFinder imports it.
+file(GLOB_RECURSE files RELATIVE ${DIR} ${DIR}/*.py)
+list(SORT files)
+set(body "// Generated from ${DIR}; do not edit.\n#include <cstddef>\nstruct SdgEmbeddedFile { const char* path; const char* source; };\n")
+set(entries "")
+set(i 0)
+foreach(f ${files})
+  file(READ ${DIR}/${f} content)
+  string(FIND "${content}" ")__sdgembed__\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${DIR}/${f} contains the raw-string delimiter")
+  endif()
+  string(APPEND body "static const char k${VAR}_${i}[] = R\"__sdgembed__(${content})__sdgembed__\";\n")
+  string(APPEND entries "  {\"${f}\", k${VAR}_${i}},\n")
+  math(EXPR i "${i} + 1")
+endforeach()
+string(APPEND body "extern const SdgEmbeddedFile ${VAR}[];\nextern const size_t ${VAR}Count;\n")
+string(APPEND body "const SdgEmbeddedFile ${VAR}[] = {\n${entries}};\nconst size_t ${VAR}Count = ${i};\n")
+file(WRITE ${OUT} "${body}")

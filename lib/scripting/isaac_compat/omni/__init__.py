@@ -1,0 +1,1 @@
+"""omni: the Kit modules Isaac Sim's behavior scripts use, over sdgbehave."""

@@ -1,0 +1,126 @@
+"""omni.behavior.scripting.core.BehaviorScript over sdgbehave.Behavior.
+
+An Isaac Sim behavior class is an sdgbehave behavior: registered under its
+BEHAVIOR_NS with its VARIABLES_TO_EXPOSE as variables, instantiated once per
+prim, its hooks called by sdgbehave's timeline. `self.prim` is a Usd.Prim,
+`self.prim_path` an Sdf.Path, `self.stage` a Usd.Stage.
+
+While a hook runs, the layer knows whose it is: `np.random.default_rng(None)`
+(and `default_rng()`) then draws its seed from this behavior's sdgbehave
+random stream -- a function of the run seed, the prim, the namespace, the
+iteration and the stream's position -- instead of OS entropy, so datasets
+are byte-identical across runs, --threads and shards. An explicit seed keeps
+its Isaac meaning.
+"""
+import re as _re
+
+import _isaac_compat
+import sdgbehave as _sdgbehave
+from pxr import Sdf, Usd
+
+_HOOKS = ("on_init", "on_play", "on_pause", "on_stop", "on_update", "on_destroy")
+
+
+def _wrap_hook(name, method):
+    def hook(self, *args):
+        previous = _isaac_compat.current
+        _isaac_compat.current = self
+        try:
+            if name == "on_update":
+                _isaac_compat.advance(args[0])
+            elif name == "on_play":
+                _isaac_compat._last_update = None  # the next update is new even at an earlier time
+            result = method(self, *args)
+            _isaac_compat.run_ready()
+            return result
+        finally:
+            _isaac_compat.current = previous
+    hook.__name__, hook.__qualname__, hook.__doc__ = method.__name__, method.__qualname__, method.__doc__
+    hook.__wrapped__ = method
+    return hook
+
+
+def _namespace(cls):
+    """BEHAVIOR_NS, else the class name in camelCase (ExampleBehavior -> exampleBehavior)."""
+    ns = cls.__dict__.get("BEHAVIOR_NS")
+    return ns if ns else cls.__name__[:1].lower() + cls.__name__[1:]
+
+
+class BehaviorScript(_sdgbehave.Behavior):
+    """Isaac Sim's behavior base class."""
+
+    _isaac_script = True
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        for name in _HOOKS:
+            method = cls.__dict__.get(name)
+            if method is not None and not hasattr(method, "__wrapped__"):
+                setattr(cls, name, _wrap_hook(name, method))
+
+    @property
+    def prim(self):
+        p = self.__dict__.get("_isaac_prim")
+        if p is None:
+            p = Usd.Prim(self._ctx.prim, self.stage)
+            self.__dict__["_isaac_prim"] = p
+        return p
+
+    @property
+    def prim_path(self):
+        return Sdf.Path(self._ctx.prim_path)
+
+    @property
+    def stage(self):
+        s = self.__dict__.get("_isaac_stage")
+        if s is None:
+            s = Usd.Stage(self._ctx.stage)
+            self.__dict__["_isaac_stage"] = s
+        return s
+
+    def _isaac_entropy(self):
+        """A 64-bit seed from this behavior's random stream."""
+        rng = self._ctx.rng
+        return (rng.integers(0, 2 ** 32) << 32) | rng.integers(0, 2 ** 32)
+
+
+def _sdg_variables(cls):
+    """VARIABLES_TO_EXPOSE in sdgbehave's form: type names as strings, Gf values as tuples."""
+    out = []
+    for record in cls.VARIABLES_TO_EXPOSE or []:
+        if not isinstance(record, dict):
+            out.append(record)
+            continue
+        r = dict(record)
+        if isinstance(r.get("attr_type"), Sdf.ValueTypeName):
+            r["attr_type"] = r["attr_type"].native
+        if "default_value" in r:
+            r["default_value"] = Usd._to_native(r["default_value"])
+        out.append(r)
+    return out
+
+
+def _install_seeding():
+    """Routes numpy's default_rng(None) through the running behavior's stream."""
+    import random as _random
+
+    import numpy
+    real = numpy.random.default_rng
+    if getattr(real, "_sdg_seeded", False):
+        return
+
+    def default_rng(seed=None):
+        if seed is None:
+            b = _isaac_compat.current
+            seed = b._isaac_entropy() if b is not None else _random.getrandbits(64)
+        return real(seed)
+
+    default_rng._sdg_seeded = True
+    default_rng.__doc__ = real.__doc__
+    numpy.random.default_rng = default_rng
+
+
+try:
+    _install_seeding()
+except ImportError:  # numpy is optional: scripts that do not use it run without it
+    pass

@@ -1,0 +1,203 @@
+"""pxr.UsdGeom: Xformable and its ops, XformCache, Imageable, the geometry schemas.
+
+sdgbehave's stage holds every xform op in double precision: an op added with
+PrecisionFloat holds doubles and reports double type names."""
+from _isaac_compat import Located as _Located, module_getattr as _module_getattr, unsupported as _unsupported
+
+from . import Gf, Sdf, Usd
+
+__getattr__ = _module_getattr(__name__)
+
+
+class Tokens:
+    x, y, z = "X", "Y", "Z"
+    invisible, inherited = "invisible", "inherited"
+    default_, render, proxy, guide = "default", "render", "proxy", "guide"
+
+
+class XformOp(_Located):
+    """One op of a prim, by attribute name ("xformOp:translate")."""
+    __slots__ = ("_prim", "_name")
+    # Op types and precisions, as UsdGeom.XformOp's enums.
+    TypeInvalid, TypeTranslate, TypeScale = "", "translate", "scale"
+    TypeRotateX, TypeRotateY, TypeRotateZ = "rotateX", "rotateY", "rotateZ"
+    TypeRotateXYZ, TypeRotateXZY, TypeRotateYXZ = "rotateXYZ", "rotateXZY", "rotateYXZ"
+    TypeRotateYZX, TypeRotateZXY, TypeRotateZYX = "rotateYZX", "rotateZXY", "rotateZYX"
+    TypeOrient, TypeTransform = "orient", "transform"
+    PrecisionDouble, PrecisionFloat, PrecisionHalf = "double", "float", "half"
+
+    def __init__(self, prim, name):
+        self._prim, self._name = prim, name
+
+    def __bool__(self):
+        return True
+
+    def GetOpName(self):
+        return self._name
+
+    GetName = GetOpName
+
+    def GetOpType(self):
+        return self._name.split(":")[1]
+
+    def GetPrecision(self):
+        return XformOp.PrecisionDouble
+
+    def GetTypeName(self):
+        return Sdf.ValueTypeNames.Find(self._prim._h.attribute_type(self._name))
+
+    def GetAttr(self):
+        return Usd.Attribute(self._prim, self._name)
+
+    def Get(self, time=None):
+        h = self._prim._h
+        for name, value in h.xform_ops:
+            if name == self._name:
+                return Usd._to_gf(value, h.attribute_type(name))
+        return None
+
+    def Set(self, value, time=None):
+        self._prim._h.set_xform_op(self._name, Usd._to_native(value))
+        return True
+
+    def GetOpTransform(self, time=None):
+        raise _unsupported("UsdGeom.XformOp.GetOpTransform")
+
+    def __repr__(self):
+        return f"UsdGeom.XformOp({self._name!r})"
+
+
+class Imageable(Usd.Typed):
+    __slots__ = ()
+
+    def MakeInvisible(self, time=None):
+        self._prim._h.set_attribute("visibility", "invisible")
+
+    def MakeVisible(self, time=None):
+        self._prim._h.set_attribute("visibility", "inherited")
+
+    def GetVisibilityAttr(self):
+        return Usd.Attribute(self._prim, "visibility")
+
+
+class Xformable(Imageable):
+    __slots__ = ()
+
+    @staticmethod
+    def _sdg_is_a(handle):
+        return handle.is_xformable
+
+    def GetOrderedXformOps(self):
+        return [XformOp(self._prim, name) for name, _ in self._prim._h.xform_ops]
+
+    def GetXformOpOrderAttr(self):
+        return Usd.Attribute(self._prim, "xformOpOrder")
+
+    def AddXformOp(self, op_type, precision=XformOp.PrecisionDouble, suffix="", is_inverse_op=False):
+        if is_inverse_op:
+            raise _unsupported("UsdGeom.Xformable.AddXformOp(isInverseOp=True)")
+        name = f"xformOp:{op_type}" + (f":{suffix}" if suffix else "")
+        self._prim._h.add_xform_op(name)
+        return XformOp(self._prim, name)
+
+    def AddTranslateOp(self, precision=XformOp.PrecisionDouble, opSuffix=""):
+        return self.AddXformOp(XformOp.TypeTranslate, precision, opSuffix)
+
+    def AddOrientOp(self, precision=XformOp.PrecisionFloat, opSuffix=""):
+        return self.AddXformOp(XformOp.TypeOrient, precision, opSuffix)
+
+    def AddRotateXYZOp(self, precision=XformOp.PrecisionFloat, opSuffix=""):
+        return self.AddXformOp(XformOp.TypeRotateXYZ, precision, opSuffix)
+
+    def AddScaleOp(self, precision=XformOp.PrecisionFloat, opSuffix=""):
+        return self.AddXformOp(XformOp.TypeScale, precision, opSuffix)
+
+    def AddTransformOp(self, precision=XformOp.PrecisionDouble, opSuffix=""):
+        return self.AddXformOp(XformOp.TypeTransform, precision, opSuffix)
+
+    def GetLocalTransformation(self, time=None):
+        return _matrix_from_columns(self._prim._h.get_local_matrix())
+
+    def ComputeLocalToWorldTransform(self, time=None):
+        return _matrix_from_columns(self._prim._h.get_world_matrix())
+
+
+def _matrix_from_columns(m):
+    """sdgbehave's column-vector 4x4 as a Gf.Matrix4d (rows, translation last)."""
+    return Gf.Matrix4d([[m[c][r] for c in range(4)] for r in range(4)])
+
+
+class XformCache(_Located):
+    __slots__ = ("_time",)
+
+    def __init__(self, time=None):
+        self._time = time
+
+    def GetLocalToWorldTransform(self, prim):
+        return _matrix_from_columns(prim._h.get_world_matrix())
+
+    def GetParentToWorldTransform(self, prim):
+        parent = prim.GetParent()
+        return self.GetLocalToWorldTransform(parent) if parent else Gf.Matrix4d()
+
+    def GetLocalTransformation(self, prim):
+        return _matrix_from_columns(prim._h.get_local_matrix()), False
+
+    def Clear(self):
+        pass
+
+    def SetTime(self, time):
+        self._time = time
+
+
+class Xform(Xformable):
+    __slots__ = ()
+
+    @staticmethod
+    def _sdg_is_a(handle):
+        return handle.type_name == "Xform"
+
+
+class Boundable(Xformable):
+    __slots__ = ()
+
+
+class Gprim(Boundable):
+    __slots__ = ()
+
+    @staticmethod
+    def _sdg_is_a(handle):
+        return handle.is_geometry
+
+
+class Camera(Xformable):
+    __slots__ = ()
+
+    @staticmethod
+    def _sdg_is_a(handle):
+        return handle.is_camera
+
+
+def _typed(name):
+    return type(name, (Gprim,), {"__slots__": (), "_sdg_is_a": staticmethod(lambda h: h.type_name == name)})
+
+
+Mesh, Cube, Sphere, Cylinder, Cone, Capsule, Plane = (_typed(n) for n in
+                                                      ("Mesh", "Cube", "Sphere", "Cylinder", "Cone", "Capsule",
+                                                       "Plane"))
+
+
+class Scope(Imageable):
+    __slots__ = ()
+
+    @staticmethod
+    def _sdg_is_a(handle):
+        return handle.type_name == "Scope"
+
+
+def GetStageUpAxis(stage):
+    return stage._s.up_axis
+
+
+def GetStageMetersPerUnit(stage):
+    return stage._s.meters_per_unit

@@ -1,0 +1,1 @@
+"""pxr over sdgbehave's stage: the USD modules Isaac Sim's behavior scripts use."""
