@@ -87,6 +87,23 @@ UsdTyped toUsd(const Value& v, const AssetResolver& assets) {
     }
     case ValueType::StringArray:
       return {usd::Value::textArray(Kind::String, v.get<std::vector<std::string>>()), name};
+    // Inline geometry (meshes imported from USD): the same arrays back.
+    case ValueType::IntArray: {
+      std::vector<double> xs;
+      for (int32_t i : v.get<IntArray>().items()) xs.push_back(double(i));
+      return {usd::Value::array(Kind::Int, std::move(xs)), name};
+    }
+    case ValueType::FloatArray:
+    case ValueType::Point3fArray:
+    case ValueType::Normal3fArray:
+    case ValueType::TexCoord2fArray: {
+      const Kind kind = v.type() == ValueType::FloatArray        ? Kind::Float
+                        : v.type() == ValueType::TexCoord2fArray ? Kind::Vec2f
+                                                                 : Kind::Vec3f;
+      std::vector<double> xs;
+      for (float f : v.get<FloatArray>().items()) xs.push_back(double(f));
+      return {usd::Value::array(kind, std::move(xs)), name};
+    }
   }
   return {};
 }
