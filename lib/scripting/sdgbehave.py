@@ -304,12 +304,12 @@ def _load_script(path, module_name):
     for obj in list(vars(module).values()):
         if _is_isaac_class(obj) and obj.__module__ == module_name:
             # Isaac Sim's script manager runs every BehaviorScript class the
-            # file defines; the namespace is BEHAVIOR_NS, else the class name.
-            from omni.behavior.scripting import core as _isaac_core
+            # file defines; the namespace is BEHAVIOR_NS, else the class name
+            # (the class answers both itself: see the compatibility layer).
             if "BEHAVIOR_NS" not in obj.__dict__:
-                obj.BEHAVIOR_NS = _isaac_core._namespace(obj)
+                obj.BEHAVIOR_NS = obj._sdg_namespace()
             class_line, var_line, entries = lines.get(obj.__name__, (1, 1, []))
-            found.append((obj, obj.__name__, class_line, var_line, entries, _isaac_core._sdg_variables(obj)))
+            found.append((obj, obj.__name__, class_line, var_line, entries, obj._sdg_exposed_variables()))
             continue
         if isinstance(obj, type) and issubclass(obj, Behavior) and obj.__module__ == module_name \
                 and "BEHAVIOR_NS" in obj.__dict__:

@@ -51,6 +51,16 @@ class BehaviorScript(_sdgbehave.Behavior):
 
     _isaac_script = True
 
+    # What sdgbehave's loader asks of a script class it did not write (it
+    # never imports this layer itself: the dependency runs one way).
+    @classmethod
+    def _sdg_namespace(cls):
+        return _namespace(cls)
+
+    @classmethod
+    def _sdg_exposed_variables(cls):
+        return _sdg_variables(cls)
+
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         for name in _HOOKS:
