@@ -148,7 +148,11 @@ nlohmann::ordered_json optionsJson(const OptionSet& options) {
 
 nlohmann::ordered_json payloadJson(const Payload& payload) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : payload.entries()) std::visit([&](const auto& x) { j[k] = x; }, v);
+  // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+  for (const auto& entry : payload.entries()) {
+    const std::string& key = entry.first;
+    std::visit([&](const auto& x) { j[key] = x; }, entry.second);
+  }
   return j;
 }
 
