@@ -135,8 +135,8 @@ const std::vector<MeshFormat>& meshFormats() {
       {{".stl"}, sniffStl, nullptr},
       {{".dae"}, sniffCollada, nullptr},
       {{".usd", ".usda", ".usdc", ".usdz"}, nullptr,
-       "is a USD file, which sdgbehave cannot read; convert it to glTF, OBJ, FBX, PLY, STL or DAE (for example with "
-       "Blender) and name that file instead"},
+       "is a USD file: sdgbehave runs USD stages as scenes (`sdgbehave run FILE.usd`) but does not yet read one as "
+       "a mesh asset; name a glTF, OBJ, FBX, PLY, STL or DAE file instead"},
   };
   return kFormats;
 }

@@ -136,15 +136,16 @@ std::vector<std::string> shardInputProblems(const std::string& dir, const RunInf
     text << in.rdbuf();
     nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
     const std::string shard = file.filename().string().substr(7, file.filename().string().size() - 12);
+    const std::string corrupt = "shard " + shard + ": " + file.string() + " is corrupt";
+    if (j.is_discarded()) {
+      problems.push_back(corrupt);
+      continue;
+    }
     RunInputs inputs;
     try {
       inputs = RunInputs::fromJson(j);
     } catch (const nlohmann::json::exception&) {
-      problems.push_back("shard " + shard + ": " + file.string() + " is corrupt");
-      continue;
-    }
-    if (j.is_discarded()) {
-      problems.push_back("shard " + shard + ": " + file.string() + " is corrupt");
+      problems.push_back(corrupt);
       continue;
     }
     const std::vector<std::string> changes = inputChanges(info.inputs, inputs);

@@ -8,6 +8,21 @@
 
 namespace sdg::usd {
 
+Kind componentKind(Kind kind) {
+  switch (kind) {
+    case Kind::Vec2i: case Kind::Vec3i: case Kind::Vec4i: return Kind::Int;
+    case Kind::Vec2h: case Kind::Vec3h: case Kind::Vec4h: case Kind::Quath: return Kind::Half;
+    case Kind::Vec2f: case Kind::Vec3f: case Kind::Vec4f: case Kind::Quatf: return Kind::Float;
+    case Kind::Vec2d: case Kind::Vec3d: case Kind::Vec4d: case Kind::Quatd:
+    case Kind::Matrix2d: case Kind::Matrix3d: case Kind::Matrix4d: return Kind::Double;
+    default: return kind;
+  }
+}
+
+int matrixDimension(Kind kind) {
+  return kind == Kind::Matrix2d ? 2 : kind == Kind::Matrix3d ? 3 : kind == Kind::Matrix4d ? 4 : 0;
+}
+
 namespace {
 
 struct KindInfo {

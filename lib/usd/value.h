@@ -55,6 +55,8 @@ enum class Kind : uint8_t {
 const char* kindName(Kind kind);            // "float3", "token", "dictionary", ...
 int componentCount(Kind kind);              // 1 for scalars, 2..4 for vectors, 4 quats, 4/9/16 matrices; 0 non-numeric
 bool isNumeric(Kind kind);
+Kind componentKind(Kind kind);  // the scalar kind of each component (Vec3f -> Float); scalars give themselves
+int matrixDimension(Kind kind);  // 2, 3, 4 for the matrices; 0 otherwise
 bool isText(Kind kind);
 
 // An attribute's value type: its Kind and whether it is an array. Role

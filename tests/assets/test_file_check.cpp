@@ -51,7 +51,7 @@ TEST_CASE("file problems: URL, USD, missing, empty, fine", "[assets]") {
   fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "ok.png");
   AssetResolver r({dir.string()});
   CHECK(fileProblem("https://example.com/a.png", FileKind::Image, r)->find("is a URL") != std::string::npos);
-  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("is a USD file, which sdgbehave cannot read") !=
+  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("is a USD file: sdgbehave runs USD stages as scenes") !=
         std::string::npos);
   std::string missing = *fileProblem("nope.png", FileKind::Image, r);
   CHECK(missing.find("texture 'nope.png' not found; searched: " + (dir / "nope.png").string()) == 0);
