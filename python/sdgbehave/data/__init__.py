@@ -9,13 +9,15 @@
     loader = torch.utils.data.DataLoader(TorchDataset("out/warehouse"), batch_size=4, collate_fn=collate)
 
 docs/datasets-python.md documents every call."""
+from .bop import BopDataset, BopImage, BopScene
 from .dataset import Dataset
 from .folder import DatasetError
 from .frame import Frame, MissingAnnotation
+from .ply import read_ply
 from .records import Boxes2D, Boxes3D, Camera, Segmentation
 
 __all__ = ["Dataset", "DatasetError", "Frame", "MissingAnnotation", "Boxes2D", "Boxes3D", "Camera", "Segmentation",
-           "TorchDataset", "collate"]
+           "BopDataset", "BopScene", "BopImage", "read_ply", "TorchDataset", "collate"]
 
 
 def __getattr__(name):

@@ -2,6 +2,7 @@
 import json
 import os
 
+from .bop import BopDataset
 from .folder import DatasetError, frame_files, read_run
 from .frame import Frame
 
@@ -74,6 +75,10 @@ class Dataset:
             names -= {"BACKGROUND", "UNLABELLED"}
             self._classes[taxonomy] = sorted(names)
         return list(self._classes[taxonomy])
+
+    def bop(self):
+        """The run's BopWriter output (camera.json, models/, <split>/<scene_id>/) as a BopDataset."""
+        return BopDataset(self.root)
 
     def coco(self):
         """The COCO file as a dict (a CocoWriter run), else MissingAnnotation-like DatasetError."""

@@ -18,8 +18,9 @@ class DatasetError(Exception):
 
 
 PARTS_FOLDER = ".sdgbehave"
-# <kind>_<frame digits>.<ext>, as the BasicWriter names every per-frame file.
-_FRAME_FILE = re.compile(r"^(?P<stem>.+)_(?P<digits>[0-9]+)\.(?P<ext>png|npy|json)$")
+# <kind>_<frame digits>.<ext>, as the BasicWriter names every per-frame file (kinds and camera names
+# start with a letter or _, which keeps BOP's <im_id>_<gt_id>.png masks out).
+_FRAME_FILE = re.compile(r"^(?P<stem>[A-Za-z_].*)_(?P<digits>[0-9]+)\.(?P<ext>png|npy|json)$")
 
 
 def read_json(path, what):

@@ -162,6 +162,29 @@ class Frame:
         """Structured (N,) array (instanceId, semanticId, occlusionRatio), one row per entity."""
         return self._npy("occlusion")
 
+    # Motion ------------------------------------------------------------------
+    def _flow(self, kind, channels):
+        flow = self._npy(kind)
+        if flow.dtype != np.float32 or flow.ndim != 3 or flow.shape[2] != channels:
+            raise DatasetError(f"{self.path(kind, 'npy')}: {flow.dtype} {flow.shape}, "
+                               f"expected float32 (H, W, {channels})")
+        return flow
+
+    def forward_flow(self):
+        """(H, W, 2) float32 (delta row, delta column) pixels to where each pixel's surface point is in
+        the next frame (Kubric's layout; 0 in an iteration's last frame)."""
+        return self._flow("forward_flow", 2)
+
+    def backward_flow(self):
+        """(H, W, 2) float32 (delta row, delta column) pixels to where each pixel's surface point was
+        in the previous frame (0 in an iteration's first frame)."""
+        return self._flow("backward_flow", 2)
+
+    def motion_vectors(self):
+        """(H, W, 4) float32 in Isaac's layout: x, y pixels moved since the previous frame, x positive
+        to the left, y positive upward, z and w 0."""
+        return self._flow("motion_vectors", 4)
+
     # Camera and points ------------------------------------------------------
     def camera_params(self):
         """Camera: view and projection matrices, intrinsics K, resolution (camera_params_X.json)."""
