@@ -151,8 +151,10 @@ def frame_files(files, frame, product_name, several_products):
         if not match or int(match["digits"]) != frame:
             continue
         stem = match["stem"]
-        folder = os.path.dirname(path)
-        if several_products and "/" not in folder and stem.startswith(product_name + "_") and folder:
-            stem = stem[len(product_name) + 1:]  # use_common_output_dir: <annotator>/<camera>_<kind>_X
+        # With several cameras: <camera>/<annotator>/<kind>_X, or with use_common_output_dir
+        # <annotator>/<camera>_<kind>_X, whose camera prefix is not part of the kind.
+        in_common_folder = path.count("/") == 1
+        if several_products and in_common_folder and stem.startswith(product_name + "_"):
+            stem = stem[len(product_name) + 1:]
         kinds.setdefault(stem, {})[match["ext"]] = path
     return kinds
