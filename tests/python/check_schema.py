@@ -43,6 +43,23 @@ def doc_scenes(source):
     return found
 
 
+def misspelt_variable_problems(scene, instance, committed, with_scripts, script_behaviors):
+    """A script behavior's variable misspelt: the committed schema accepts it (it cannot know the
+    script), the schema made with the script rejects it (it types the script's variables)."""
+    for prim in (instance.get("prims") or {}).values():
+        for name, variables in ((prim or {}).get("behaviors") or {}).items():
+            if name in script_behaviors:
+                variables = dict(variables or {}, misspeltVariable=1)
+                prim["behaviors"][name] = variables
+                problems = []
+                if not committed.is_valid(instance):
+                    problems.append(f"{scene}: the committed schema rejects an unknown behavior's variable")
+                if jsonschema.Draft7Validator(with_scripts).is_valid(instance):
+                    problems.append(f"{scene}: the schema with its scripts accepts {name}.misspeltVariable")
+                return problems
+    return [f"{scene}: no prim uses a behavior of its scripts"]
+
+
 def main():
     binary, schema_path, source = sys.argv[1:4]
     scenes_dir = os.path.join(source, "scenes")
@@ -83,6 +100,7 @@ def main():
                 failures.append(f"{scene}: `sdgbehave schema {' '.join(flags)}` added no behavior")
             for error in jsonschema.Draft7Validator(with_scripts).iter_errors(instance):
                 failures.append(f"{scene}: schema with its scripts: {error.message} at {list(error.absolute_path)}")
+            failures += misspelt_variable_problems(scene, instance, validator, with_scripts, script_behaviors)
         result = subprocess.run([binary, "validate", scene], capture_output=True, text=True)
         if result.returncode != 0:
             failures.append(f"{scene}: sdgbehave validate exited {result.returncode}:\n{result.stderr}")
