@@ -86,3 +86,21 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/cmake/sdgbehaveConfigVers
 install(FILES ${PROJECT_BINARY_DIR}/cmake/sdgbehaveConfig.cmake
               ${PROJECT_BINARY_DIR}/cmake/sdgbehaveConfigVersion.cmake
         DESTINATION ${SDG_INSTALL_CMAKEDIR})
+
+# The Python package for the datasets, `sdgbehave.data` (python/, pure
+# Python; docs/datasets-python.md), installed where the interpreter sdgbehave
+# embeds looks for packages under the prefix: on Debian
+# <prefix>/lib/python3.X/dist-packages, elsewhere site-packages. From the
+# build tree it imports with PYTHONPATH=<build>/python (a link to python/).
+if(NOT DEFINED SDG_PYTHON_INSTALL_DIR)
+  execute_process(COMMAND ${Python3_EXECUTABLE} -c
+    "import sys; v = sys.version_info; d = any(p.endswith('dist-packages') for p in sys.path); print(f'lib/python{v[0]}.{v[1]}/' + ('dist-packages' if d else 'site-packages'), end='')"
+    OUTPUT_VARIABLE SDG_PYTHON_INSTALL_DEFAULT RESULT_VARIABLE python_failed)
+  if(python_failed)
+    message(FATAL_ERROR "${Python3_EXECUTABLE} could not say where Python packages go; set SDG_PYTHON_INSTALL_DIR")
+  endif()
+  set(SDG_PYTHON_INSTALL_DIR ${SDG_PYTHON_INSTALL_DEFAULT} CACHE STRING "Where `sdgbehave.data` is installed, relative to the prefix")
+endif()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/python/sdgbehave DESTINATION ${SDG_PYTHON_INSTALL_DIR}
+        COMPONENT python FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
+file(CREATE_LINK ${PROJECT_SOURCE_DIR}/python ${PROJECT_BINARY_DIR}/python SYMBOLIC)

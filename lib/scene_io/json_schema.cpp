@@ -17,6 +17,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 constexpr const char* kIdentifierPattern = "[A-Za-z_][A-Za-z0-9_]*";
+// A variable's name: identifiers joined by ':' (the rule script variables follow).
+constexpr const char* kAttributeNamePattern = "^[A-Za-z_][A-Za-z0-9_]*(:[A-Za-z_][A-Za-z0-9_]*)*$";
 
 Json numbers(size_t count, const char* itemType = "number") {
   return Json{{"type", "array"}, {"items", {{"type", itemType}}}, {"minItems", count}, {"maxItems", count}};
@@ -112,22 +114,35 @@ Json eventsSchema() {
           {"items", step}};
 }
 
+Json enabledSchema() {
+  return {{"description", "false detaches the behavior (one a referenced asset attached, say)."}, {"type", "boolean"}};
+}
+
 Json behaviorsSchema(const BehaviorCatalog& catalog) {
   Json props = Json::object();
   for (const BehaviorSpec& spec : catalog.specs) {
     Json vars = Json::object();
     for (const AttributeSpec& var : spec.variables)
       if (!var.locked) vars[var.name] = attributeSchema(var);
-    vars["enabled"] = {{"description", "false detaches the behavior (one a referenced asset attached, say)."},
-                       {"type", "boolean"}};
+    vars["enabled"] = enabledSchema();
     props[spec.name] = {{"description", spec.summary},
                         {"type", {"object", "null"}},
                         {"additionalProperties", false},
                         {"properties", vars}};
   }
+  // A behavior this schema does not know comes from a script or plugin the
+  // scene loads (`scripts:`, `plugins:`), which the committed schema cannot
+  // see: it is accepted with loosely typed variables, so an editor does not
+  // underline a valid scene; `sdgbehave schema --script/--plugin` types it,
+  // and the loader checks every name and value (with did-you-mean).
+  Json unknown = {{"description", "A behavior defined by a behavior script or plugin the scene loads; "
+                                  "`sdgbehave schema --script FILE.py` (or --plugin) lists its variables."},
+                  {"type", {"object", "null"}},
+                  {"propertyNames", {{"pattern", kAttributeNamePattern}}},
+                  {"properties", {{"enabled", enabledSchema()}}}};
   return {{"description", "Behaviors attached to the prim, in order, with their exposed variables."},
           {"type", "object"},
-          {"additionalProperties", false},
+          {"additionalProperties", unknown},
           {"properties", props}};
 }
 

@@ -25,6 +25,11 @@ FENCE = re.compile(r"^ {0,3}(`{3,}|~{3,})\s*([^\s`]*)")
 
 def shell_blocks(text):
     """(first line number, lines) of every fenced block tagged sh/bash/shell."""
+    return [(start, body) for start, language, body in fenced_blocks(text) if language in RUN_LANGUAGES]
+
+
+def fenced_blocks(text):
+    """(first line number, language, lines) of every fenced block, in order."""
     blocks, lines = [], text.splitlines()
     i = 0
     while i < len(lines):
@@ -42,8 +47,7 @@ def shell_blocks(text):
             body.append(lines[i])
             i += 1
         i += 1
-        if language in RUN_LANGUAGES:
-            blocks.append((start, body))
+        blocks.append((start, language, body))
     return blocks
 
 
