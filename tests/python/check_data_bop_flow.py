@@ -63,6 +63,9 @@ def check_flow(data):
         check(forward.shape == (72, 96, 2) and backward.shape == (72, 96, 2) and motion.shape == (72, 96, 4),
               f"flow shapes {forward.shape} {backward.shape} {motion.shape}")
         check(not motion[..., 2:].any(), "motion_vectors' z and w are not 0")
+        # Isaac's x (left) and y (up) are the backward flow's column and row (docs/writers.md).
+        check(np.array_equal(motion[..., 0], backward[..., 1]) and np.array_equal(motion[..., 1], backward[..., 0]),
+              f"frame {frame.number}: motion_vectors are not (backward column, backward row)")
     check(not frames[0].backward_flow().any() and not frames[0].motion_vectors().any(),
           "the first frame has backward motion")
     check(not frames[-1].forward_flow().any(), "the last frame has forward flow")
