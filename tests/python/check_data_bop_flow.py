@@ -8,6 +8,8 @@ BasicWriter's files of the same frames:
   spans its full mask (pixel centres at +0.5, BOP's convention); the BOP
   rgb is the BasicWriter's rgb; the BOP depth (mm, depth_scale) is the
   distance to the image plane; cam_K is Camera.K moved by half a pixel;
+- a run of two iterations, whole and as two merged shards, reads as the
+  same BOP scenes and images in the same order;
 - forward_flow, backward_flow and motion_vectors read with their documented
   shapes; an iteration's first frame has no backward motion and its last no
   forward flow; motion_vectors' last two channels are 0.
@@ -63,10 +65,30 @@ def check_flow(data):
         check(forward.shape == (72, 96, 2) and backward.shape == (72, 96, 2) and motion.shape == (72, 96, 4),
               f"flow shapes {forward.shape} {backward.shape} {motion.shape}")
         check(not motion[..., 2:].any(), "motion_vectors' z and w are not 0")
+        # Isaac's x (left) and y (up) are the backward flow's column and row (docs/writers.md).
+        check(np.array_equal(motion[..., 0], backward[..., 1]) and np.array_equal(motion[..., 1], backward[..., 0]),
+              f"frame {frame.number}: motion_vectors are not (backward column, backward row)")
     check(not frames[0].backward_flow().any() and not frames[0].motion_vectors().any(),
           "the first frame has backward motion")
     check(not frames[-1].forward_flow().any(), "the last frame has forward flow")
     check(frames[0].forward_flow().any() and frames[-1].backward_flow().any(), "the turning crate does not move")
+
+
+def check_bop_shards(binary, scene, work):
+    """Two iterations run whole and as two merged shards read as the same BOP scenes and images."""
+    whole, sharded = os.path.join(work, "whole"), os.path.join(work, "sharded")
+    plan = ["--iterations", "2", "--frames", "2", "--quiet"]
+    subprocess.run([binary, "run", scene, "--out", whole, *plan], check=True, capture_output=True)
+    for shard in ("1/2", "0/2"):
+        subprocess.run([binary, "run", scene, "--out", sharded, "--shard", shard, *plan], check=True,
+                       capture_output=True)
+    subprocess.run([binary, "merge", sharded, "--quiet"], check=True, capture_output=True)
+    a, b = Dataset(whole).bop(), Dataset(sharded).bop()
+    check(a.scene_ids("train_pbr") == b.scene_ids("train_pbr") == [0, 1], f"scenes {b.scene_ids('train_pbr')}")
+    for x, y in zip((i for s in a.scenes("train_pbr") for i in s), (i for s in b.scenes("train_pbr") for i in s)):
+        check(x.image_id == y.image_id and np.array_equal(x.rgb(), y.rgb()) and np.array_equal(x.depth(), y.depth())
+              and [o["obj_id"] for o in x.objects] == [o["obj_id"] for o in y.objects],
+              f"{y}: the sharded run's image differs from the whole run's")
 
 
 def main():
@@ -86,6 +108,7 @@ def main():
         check(len(data) == 3, f"{len(data)} frames")
         check_bop(data)
         check_flow(data)
+        check_bop_shards(binary, scene, work)
     return finish("ok: BOP scenes and flow read, consistent with the BasicWriter's files")
 
 

@@ -14,11 +14,16 @@ BOX2D_DTYPE = np.dtype([("semanticId", "<u4"), ("x_min", "<i4"), ("y_min", "<i4"
 BOX3D_DTYPE = np.dtype([("semanticId", "<u4"), ("x_min", "<f4"), ("y_min", "<f4"), ("z_min", "<f4"),
                         ("x_max", "<f4"), ("y_max", "<f4"), ("z_max", "<f4"), ("transform", "<f4", (4, 4)),
                         ("occlusionRatio", "<f4")])
-# Which writer option makes each kind, for the message when one is missing.
-_OPTION_OF = {"semantic_segmentation_labels": "semantic_segmentation",
-              "instance_segmentation_mapping": "instance_segmentation",
-              "instance_segmentation_semantics_mapping": "instance_segmentation",
-              "instance_id_segmentation_mapping": "instance_id_segmentation"}
+# The BasicWriter options; a file kind belongs to the longest one it starts with
+# ("instance_id_segmentation_mapping" to instance_id_segmentation), for the message when one is missing.
+_OPTIONS = ("rgb", "hdr_color", "bounding_box_2d_tight", "bounding_box_2d_loose", "bounding_box_3d",
+            "semantic_segmentation", "instance_id_segmentation", "instance_segmentation", "distance_to_camera",
+            "distance_to_image_plane", "occlusion", "normals", "camera_params", "pointcloud", "motion_vectors",
+            "forward_flow", "backward_flow")
+
+
+def _option_of(kind):
+    return max((o for o in _OPTIONS if kind.startswith(o)), key=len, default=kind)
 
 
 class MissingAnnotation(DatasetError, KeyError):
@@ -48,7 +53,7 @@ class Frame:
         """The absolute path of the frame's `kind` file (with `ext` when it has several)."""
         found = self.files.get(kind)
         if not found or (ext and ext not in found):
-            option = _OPTION_OF.get(kind, kind.replace("_labels", "").replace("_prim_paths", ""))
+            option = _option_of(kind)
             raise MissingAnnotation(f"{self.root}: frame {self.number} of {self.camera} has no {kind}"
                                     f"{'.' + ext if ext else ''} file; the scene's writer did not enable it "
                                     f"(writer.{option}: true)")
