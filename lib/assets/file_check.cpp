@@ -60,6 +60,14 @@ std::string sniffGlb(std::string_view head, uint64_t) {
   return head.starts_with("glTF") ? "" : "not a binary glTF: it does not start with 'glTF'";
 }
 
+// A USD layer or package (read by scene_io/usd_mesh_asset.cpp): usda text,
+// a crate file, or a zip.
+std::string sniffUsd(std::string_view head, uint64_t) {
+  if (head.starts_with("#usda") || head.starts_with("PXR-USDC") || head.starts_with(std::string_view("PK\x03\x04", 4)))
+    return "";
+  return "not a USD file: it starts with neither '#usda' (text), 'PXR-USDC' (crate) nor a zip header (usdz)";
+}
+
 std::string sniffGltf(std::string_view head, uint64_t) {
   return looksLikeText(head) && skipBomAndSpace(head).starts_with("{") ? "" : "not a glTF (JSON) file: it does not start with '{'";
 }
@@ -134,9 +142,7 @@ const std::vector<MeshFormat>& meshFormats() {
       {{".ply"}, sniffPly, nullptr},
       {{".stl"}, sniffStl, nullptr},
       {{".dae"}, sniffCollada, nullptr},
-      {{".usd", ".usda", ".usdc", ".usdz"}, nullptr,
-       "is a USD file: sdgbehave runs USD stages as scenes (`sdgbehave run FILE.usd`) but does not yet read one as "
-       "a mesh asset; name a glTF, OBJ, FBX, PLY, STL or DAE file instead"},
+      {{".usd", ".usda", ".usdc", ".usdz"}, sniffUsd, nullptr},
   };
   return kFormats;
 }

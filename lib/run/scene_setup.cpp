@@ -152,7 +152,7 @@ namespace {
 LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
   UsdImportReport report;
-  Scene scene = importUsdScene(request.scenePath, registry.catalog(), UsdImportOptions{}, report);
+  Scene scene = importUsdScene(request.scenePath, registry.catalog(), usdImportOptionsFor(request.overrides), report);
   for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
   Diagnostics diag;
   applyOverrides(request.overrides, registry.catalog(), scene, diag);

@@ -51,8 +51,13 @@ TEST_CASE("file problems: URL, USD, missing, empty, fine", "[assets]") {
   fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "ok.png");
   AssetResolver r({dir.string()});
   CHECK(fileProblem("https://example.com/a.png", FileKind::Image, r)->find("is a URL") != std::string::npos);
-  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("is a USD file: sdgbehave runs USD stages as scenes") !=
-        std::string::npos);
+  // USD files are mesh assets (scene_io/usd_mesh_asset.cpp): looked for and sniffed like the others.
+  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("mesh 'props/box.usd' not found") == 0);
+  writeFile(dir / "fake.usda", "not usd at all");
+  CHECK(fileProblem("fake.usda", FileKind::Mesh, r)->ends_with("not a USD file: it starts with neither '#usda' (text), "
+                                                              "'PXR-USDC' (crate) nor a zip header (usdz)"));
+  writeFile(dir / "real.usda", "#usda 1.0\n");
+  CHECK_FALSE(fileProblem("real.usda", FileKind::Mesh, r));
   std::string missing = *fileProblem("nope.png", FileKind::Image, r);
   CHECK(missing.find("texture 'nope.png' not found; searched: " + (dir / "nope.png").string()) == 0);
   CHECK(fileProblem("empty.png", FileKind::Image, r)->find("cannot be read: it is empty") != std::string::npos);
@@ -146,7 +151,7 @@ TEST_CASE("file problems: a mesh is a file of a format the loader reads, by exte
   };
   // A wrong extension is refused without opening the file.
   CHECK(problem("picture.png") == "mesh 'picture.png' is not a mesh format sdgbehave reads; mesh files end in .obj, "
-                                  ".glb, .gltf, .fbx, .ply, .stl, .dae");
+                                  ".glb, .gltf, .fbx, .ply, .stl, .dae, .usd, .usda, .usdc, .usdz");
   CHECK(problem("accounts").starts_with("mesh 'accounts' is not a mesh format sdgbehave reads"));
   CHECK(problem("/etc/passwd").starts_with("mesh '/etc/passwd' is not a mesh format sdgbehave reads"));
   // The right extension on the wrong bytes.
@@ -160,7 +165,7 @@ TEST_CASE("file problems: a mesh is a file of a format the loader reads, by exte
   CHECK(problem("odd.ply").ends_with("not a PLY: it does not start with 'ply'"));
   CHECK(problem("odd.fbx").ends_with("not an FBX: neither 'Kaydara FBX Binary' nor an ASCII FBX's '; FBX' at its start"));
   CHECK(readableExtensions(FileKind::Mesh) ==
-        std::vector<std::string>{".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae"});
+        std::vector<std::string>{".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae", ".usd", ".usda", ".usdc", ".usdz"});
 }
 
 TEST_CASE("file problems: a confined resolver opens nothing outside its roots", "[assets]") {
