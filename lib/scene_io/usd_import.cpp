@@ -15,6 +15,7 @@
 #include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
 #include "scene_io/usd_mesh_asset.h"
+#include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_settings.h"
 #include "scene_io/usd_value_node.h"
 #include "stage/path.h"
@@ -162,6 +163,7 @@ class Importer {
       if (prop.isRelationship || prop.value.empty()) continue;
       if (std::find(fallbacks.begin(), fallbacks.end(), prop.name) != fallbacks.end()) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
+      if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
         if (!spec && !quietlyIgnored(prop.name))
           warnOnce(prop.loc, "attr:" + prim.typeName + ":" + prop.name,
@@ -189,6 +191,17 @@ class Importer {
       }
       p.setAttribute(spec->name, *v).loc = prop.loc;
     }
+  }
+
+  // A `custom` attribute of a type the stage has (`custom double user:weight`,
+  // as export-usd writes a scene's custom attributes) becomes a custom
+  // attribute of the prim; false for other types (reported by the caller).
+  bool importCustom(const ComposedPrim& prim, const ComposedProperty& prop, Prim& p) {
+    const std::optional<ValueType> type = valueTypeFromName(prop.typeName);
+    if (!type) return false;
+    if (std::optional<Value> v = readUsdValue(prop, *type, prim.path + "." + prop.name, diag_))
+      p.setAttribute(prop.name, *v, true).loc = prop.loc;
+    return true;
   }
 
   // Prim metadata the stage keeps: `kind`, `documentation`, and the string
@@ -367,6 +380,10 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
       it != composed.layerMetadata.end() && usd::isNumeric(it->second.kind) && !it->second.numbers.empty() &&
       it->second.numbers[0] >= 1)
     scene.stage.metadata().timeCodesPerSecond = it->second.numbers[0];
+  // The behavior scripts the prims list are the scene's scripts.
+  scene.scripts = usdBehaviorScripts(composed);
+  if (options.registerScript)
+    for (const std::string& script : scene.scripts) options.registerScript(script);
   Diagnostics diag;
   importUsdPrims(composed, "/", scene.stage, "/", catalog, options, report, diag);
   // A stage export-usd wrote says its own run settings; others get defaults.

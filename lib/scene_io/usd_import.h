@@ -48,6 +48,11 @@ struct UsdImportOptions {
   // writer and capture: for a stage run on its own, not for one mounted in
   // a YAML scene.
   bool runDefaults = true;
+  // Registers a behavior script the stage lists (usdBehaviorScripts) in the
+  // caller's registry, whose catalog the import is given: called after
+  // composition, before any prim is imported. Unset: such scripts must be
+  // registered already.
+  std::function<void(const std::string& script)> registerScript;
   // Isaac's six behavior scripts named by file stand in for the built-ins
   // of the same name; other .py files listed in omni:scripting:scripts are
   // loaded as behavior scripts (the loader registers them before import).
