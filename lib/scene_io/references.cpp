@@ -9,6 +9,7 @@
 #include "core/text.h"
 #include "scene_io/map_reader.h"
 #include "scene_io/usd_import.h"
+#include "scene_io/usd_prim_labels.h"
 #include "scene_io/value_reader.h"
 #include "stage/path.h"
 #include "usd/layer_io.h"
@@ -192,7 +193,20 @@ void AssetLibrary::preloadFrom(const SceneDocument& doc, std::vector<std::string
     if (!ref) continue;  // buildScene reports it, in line order with the rest
     SourceLoc from = via.known() ? referencedFrom(ref->loc, via) : ref->loc;
     const std::string file = absoluteNormal(fs::path(ref->file).is_absolute() ? fs::path(ref->file) : dir / ref->file);
-    if (isUsdFile(file)) continue;  // composed when mounted; no scripts to preload
+    if (isUsdFile(file)) {
+      // The behavior scripts its prims list register before any prim is
+      // read, as a YAML asset's scripts: do. A broken file is reported
+      // where it is mounted.
+      try {
+        for (const std::string& script : usdBehaviorScripts(usdStage(file, {})))
+          if (std::find(scripts_.begin(), scripts_.end(), script) == scripts_.end()) {
+            scripts.push_back(DeclaredFile{script, from});
+            scripts_.push_back(script);
+          }
+      } catch (const usd::UsdError&) {
+      }
+      continue;
+    }
     for (const std::string& seen : chain)
       if (absoluteNormal(seen) == file)
         throw SceneError(from, primPath + ".reference: a reference cycle: " + chainText(chain, file));
@@ -335,16 +349,13 @@ void AssetLibrary::mountUsd(const ReferenceSpec& ref, const std::string& file, c
   UsdImportOptions options;
   options.runDefaults = false;
   usd::ComposeOptions composeOptions;
-  auto compose = [&] {
-    return usd::composeStage(file, [](const std::string& id) { return usd::readLayerFile(id); }, composeOptions);
-  };
-  usd::ComposedStage composed;
+  const usd::ComposedStage* stageRead = nullptr;
   std::string root = ref.prim;
   try {
     if (root.empty()) {  // the defaultPrim, else the first root prim: known once composed
-      composed = compose();
-      const std::vector<std::string> tops = composed.rootPrims();
-      root = !composed.defaultPrim.empty() ? "/" + composed.defaultPrim : tops.empty() ? "" : tops.front();
+      stageRead = &usdStage(file, composeOptions);
+      const std::vector<std::string> tops = stageRead->rootPrims();
+      root = !stageRead->defaultPrim.empty() ? "/" + stageRead->defaultPrim : tops.empty() ? "" : tops.front();
       if (root.empty()) {
         diag.error(ref.loc, what + ": " + ref.file + " has no prims to reference");
         return;
@@ -359,11 +370,12 @@ void AssetLibrary::mountUsd(const ReferenceSpec& ref, const std::string& file, c
         composeOptions.variantOverrides[root + v.prim.substr(mountPath.size())][v.set] = v.variant;
         selectionUsed_[i] = true;
       }
-    if (composed.prims.empty() || !composeOptions.variantOverrides.empty()) composed = compose();
+    if (!stageRead || !composeOptions.variantOverrides.empty()) stageRead = &usdStage(file, composeOptions);
   } catch (const usd::UsdError& e) {
     diag.error(ref.loc, what + ": " + e.what());
     return;
   }
+  const usd::ComposedStage& composed = *stageRead;
   if (!composed.prim(root)) {
     const std::vector<std::string> tops = composed.rootPrims();
     diag.error(ref.loc, what + ": " + ref.file + " has no prim " + root + "; its root prims: " + text::join(tops, ", ") +
@@ -376,6 +388,17 @@ void AssetLibrary::mountUsd(const ReferenceSpec& ref, const std::string& file, c
     const std::string f = absoluteNormal(usd::splitPackagePath(layer).first);
     if (std::find(usdFiles_.begin(), usdFiles_.end(), f) == usdFiles_.end()) usdFiles_.push_back(f);
   }
+}
+
+const usd::ComposedStage& AssetLibrary::usdStage(const std::string& file, const usd::ComposeOptions& options) {
+  std::string key = file;
+  for (const auto& [prim, sets] : options.variantOverrides)
+    for (const auto& [set, variant] : sets) key += "\n" + prim + "{" + set + "=" + variant + "}";
+  std::shared_ptr<const usd::ComposedStage>& slot = usdStages_[key];
+  if (!slot)
+    slot = std::make_shared<const usd::ComposedStage>(
+        usd::composeStage(file, [](const std::string& id) { return usd::readLayerFile(id); }, options));
+  return *slot;
 }
 
 std::vector<VariantSelection> AssetLibrary::unusedVariantSelections() const {

@@ -28,6 +28,7 @@
 #include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
 #include "stage/stage.h"
+#include "usd/compose.h"
 
 namespace sdg {
 
@@ -105,6 +106,11 @@ class AssetLibrary {
                 const BehaviorCatalog& catalog, Diagnostics& diag);
 
   std::map<std::string, std::unique_ptr<Asset>> assets_;  // by absolute normalized path
+  // A USD file composed with these variant choices, once per load (a file
+  // mounted many times is read once); UsdError when it does not compose.
+  const usd::ComposedStage& usdStage(const std::string& file, const usd::ComposeOptions& options);
+
+  std::map<std::string, std::shared_ptr<const usd::ComposedStage>> usdStages_;  // by file and choices
   std::vector<std::string> usdFiles_;                       // USD layers (packages) mounted, absolute
   std::vector<VariantSelection> selections_;
   std::vector<bool> selectionUsed_;

@@ -5,6 +5,8 @@
 // file's Mesh prims as the mesh asset.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 #include "assets/mesh_source.h"
 #include "run/scene_setup.h"
 #include "scene_io/scene_fixtures.h"
@@ -104,6 +106,15 @@ TEST_CASE("usd mounts: a USD file as a Mesh's asset, whole or one prim's subtree
   CHECK(chair.parts.size() == 2);
   CHECK(near(chair.bounds.min().cast<double>(), Vec3d(-0.2, -0.2, 0.0)));
   CHECK(near(chair.bounds.max().cast<double>(), Vec3d(0.2, 0.2, 0.8)));
+}
+
+TEST_CASE("usd mounts: a USD asset's behavior script registers before its prims are read", "[usd_import][mounts]") {
+  const LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = kDir + "scripted_mount.yaml"});
+  const Prim& cam = *loaded.scene.stage.find("/World/Rig/Cam");
+  CHECK(cam.behaviors() == std::vector<std::string>{"cameraOrbit"});
+  const std::string script =
+      std::filesystem::canonical(std::string(SDG_SOURCE_DIR) + "/scenes/examples/scripts/camera_orbit.py").string();
+  CHECK(std::find(loaded.scriptFiles.begin(), loaded.scriptFiles.end(), script) != loaded.scriptFiles.end());
 }
 
 TEST_CASE("usd mounts: bad references and assets are located errors", "[usd_import][mounts]") {
