@@ -33,12 +33,11 @@ std::optional<ImageHeader> headerOf(const std::vector<unsigned char>& bytes) {
 // SOI, an APP0 segment, fill bytes, then a baseline frame header of w x h
 // with `components` components.
 std::vector<unsigned char> handMade(uint32_t w, uint32_t h, unsigned char components) {
-  std::vector<unsigned char> b = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x06, 'J', 'F', 'I', 'F',
-                                  0xFF, 0xFF, 0xFF, 0xC0, 0x00, 0x0B, 8};
   auto byte = [](uint32_t x) { return static_cast<unsigned char>(x & 0xFF); };
-  b.insert(b.end(), {byte(h >> 8), byte(h), byte(w >> 8), byte(w), components});
-  b.insert(b.end(), {1, 0x11, 0});  // one component's id, sampling, table
-  return b;
+  return {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x06, 'J', 'F', 'I', 'F',   // SOI, APP0
+          0xFF, 0xFF, 0xFF, 0xC0, 0x00, 0x0B, 8,                    // fill bytes, SOF0, precision
+          byte(h >> 8), byte(h), byte(w >> 8), byte(w), components,  // height, width, components
+          1, 0x11, 0};                                               // one component's id, sampling, table
 }
 
 }  // namespace
