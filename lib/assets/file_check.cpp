@@ -1,5 +1,7 @@
 #include "assets/file_check.h"
 
+#include "assets/mesh_loader.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -9,6 +11,7 @@
 #include <string_view>
 
 #include "assets/image.h"
+#include "assets/mesh_loader.h"
 #include "assets/packaged_image.h"
 #include "core/log.h"
 #include "core/text.h"
@@ -167,6 +170,20 @@ std::optional<std::string> meshHeaderProblem(const std::string& file, const std:
   return "mesh " + text::quote(file) + " (" + path + "): " + why;
 }
 
+// A USD mesh asset is composed and its meshes read (they are small, and a
+// broken layer should fail `validate`, at its file:line:col, not the run).
+std::optional<std::string> usdMeshProblem(const std::string& file, const std::string& path, const MeshFormat& format) {
+  if (std::optional<std::string> header = meshHeaderProblem(file, path, format)) return header;
+  try {
+    loadMeshFile(path);
+    return std::nullopt;
+  } catch (const RunError& e) {
+    std::string why = e.what();
+    if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);  // the path is said once, below
+    return "mesh " + text::quote(file) + " (" + path + "): " + why;
+  }
+}
+
 // Whether the image's header reads: any format OpenImageIO reads, within
 // the size limits. Only the header is read, so `validate` stays fast.
 std::optional<std::string> imageProblem(const std::string& file, const std::string& path) {
@@ -278,6 +295,7 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   if (!probe || probe.peek() == std::ifstream::traits_type::eof())
     return noun + " " + text::quote(file) + " (" + *path + ") cannot be read" + (probe ? ": it is empty" : "");
   if (kind == FileKind::Image) return imageProblem(file, *path);
+  if (mesh && mesh->sniff == sniffUsd) return usdMeshProblem(file, *path, *mesh);
   if (mesh) return meshHeaderProblem(file, *path, *mesh);
   return std::nullopt;
 }

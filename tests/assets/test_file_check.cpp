@@ -6,6 +6,7 @@
 
 #include "assets/asset_resolver.h"
 #include "assets/file_check.h"
+#include "scene_io/usd_mesh_asset.h"
 
 using namespace sdg;
 namespace fs = std::filesystem;
@@ -56,8 +57,17 @@ TEST_CASE("file problems: URL, USD, missing, empty, fine", "[assets]") {
   writeFile(dir / "fake.usda", "not usd at all");
   CHECK(fileProblem("fake.usda", FileKind::Mesh, r)->ends_with("not a USD file: it starts with neither '#usda' (text), "
                                                               "'PXR-USDC' (crate) nor a zip header (usdz)"));
-  writeFile(dir / "real.usda", "#usda 1.0\n");
+  // A USD mesh is composed and read (through the reader scene_io installs): a layer without a
+  // mesh, or one that does not parse, fails here at its file:line:col rather than in the run.
+  registerUsdMeshAssets();
+  writeFile(dir / "real.usda", "#usda 1.0\ndef Mesh \"M\" {\n  point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n"
+                               "  int[] faceVertexCounts = [3]\n  int[] faceVertexIndices = [0, 1, 2]\n}\n");
   CHECK_FALSE(fileProblem("real.usda", FileKind::Mesh, r));
+  writeFile(dir / "empty.usda", "#usda 1.0\ndef Xform \"X\" {}\n");
+  CHECK(fileProblem("empty.usda", FileKind::Mesh, r)->ends_with("no Mesh prim with faces in the USD file"));
+  writeFile(dir / "broken.usda", "#usda 1.0\ndef Mesh \"M\" {\n  point3f[] points = [(0,0)]\n}\n");
+  CHECK_THAT(*fileProblem("broken.usda", FileKind::Mesh, r),
+             Catch::Contains("cannot read the USD mesh: ") && Catch::Contains("broken.usda:3:"));
   std::string missing = *fileProblem("nope.png", FileKind::Image, r);
   CHECK(missing.find("texture 'nope.png' not found; searched: " + (dir / "nope.png").string()) == 0);
   CHECK(fileProblem("empty.png", FileKind::Image, r)->find("cannot be read: it is empty") != std::string::npos);
