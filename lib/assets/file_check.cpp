@@ -170,6 +170,14 @@ std::optional<std::string> meshHeaderProblem(const std::string& file, const std:
   return "mesh " + text::quote(file) + " (" + path + "): " + why;
 }
 
+// "texture 'a.png' (/abs/a.png): why" from a reader's RunError, which
+// starts with the path: it is said once.
+std::string readProblem(const char* noun, const std::string& file, const std::string& path, const RunError& e) {
+  std::string why = e.what();
+  if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);
+  return std::string(noun) + " " + text::quote(file) + " (" + path + "): " + why;
+}
+
 // A USD mesh asset is composed and its meshes read (they are small, and a
 // broken layer should fail `validate`, at its file:line:col, not the run).
 std::optional<std::string> usdMeshProblem(const std::string& file, const std::string& path, const MeshFormat& format) {
@@ -178,9 +186,7 @@ std::optional<std::string> usdMeshProblem(const std::string& file, const std::st
     loadMeshFile(path);
     return std::nullopt;
   } catch (const RunError& e) {
-    std::string why = e.what();
-    if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);  // the path is said once, below
-    return "mesh " + text::quote(file) + " (" + path + "): " + why;
+    return readProblem("mesh", file, path, e);
   }
 }
 
@@ -191,9 +197,7 @@ std::optional<std::string> imageProblem(const std::string& file, const std::stri
     readImageHeader(path);
     return std::nullopt;
   } catch (const RunError& e) {
-    std::string why = e.what();
-    if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);  // the path is said once, below
-    return "texture " + text::quote(file) + " (" + path + "): " + why;
+    return readProblem("texture", file, path, e);
   }
 }
 
