@@ -1,5 +1,7 @@
 #include "assets/file_check.h"
 
+#include "assets/mesh_loader.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -9,6 +11,7 @@
 #include <string_view>
 
 #include "assets/image.h"
+#include "assets/mesh_loader.h"
 #include "assets/packaged_image.h"
 #include "core/log.h"
 #include "core/text.h"
@@ -58,6 +61,14 @@ using Sniff = std::string (*)(std::string_view head, uint64_t size);
 
 std::string sniffGlb(std::string_view head, uint64_t) {
   return head.starts_with("glTF") ? "" : "not a binary glTF: it does not start with 'glTF'";
+}
+
+// A USD layer or package (read by scene_io/usd_mesh_asset.cpp): usda text,
+// a crate file, or a zip.
+std::string sniffUsd(std::string_view head, uint64_t) {
+  if (head.starts_with("#usda") || head.starts_with("PXR-USDC") || head.starts_with(std::string_view("PK\x03\x04", 4)))
+    return "";
+  return "not a USD file: it starts with neither '#usda' (text), 'PXR-USDC' (crate) nor a zip header (usdz)";
 }
 
 std::string sniffGltf(std::string_view head, uint64_t) {
@@ -134,9 +145,7 @@ const std::vector<MeshFormat>& meshFormats() {
       {{".ply"}, sniffPly, nullptr},
       {{".stl"}, sniffStl, nullptr},
       {{".dae"}, sniffCollada, nullptr},
-      {{".usd", ".usda", ".usdc", ".usdz"}, nullptr,
-       "is a USD file: sdgbehave runs USD stages as scenes (`sdgbehave run FILE.usd`) but does not yet read one as "
-       "a mesh asset; name a glTF, OBJ, FBX, PLY, STL or DAE file instead"},
+      {{".usd", ".usda", ".usdc", ".usdz"}, sniffUsd, nullptr},
   };
   return kFormats;
 }
@@ -161,6 +170,26 @@ std::optional<std::string> meshHeaderProblem(const std::string& file, const std:
   return "mesh " + text::quote(file) + " (" + path + "): " + why;
 }
 
+// "texture 'a.png' (/abs/a.png): why" from a reader's RunError, which
+// starts with the path: it is said once.
+std::string readProblem(const char* noun, const std::string& file, const std::string& path, const RunError& e) {
+  std::string why = e.what();
+  if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);
+  return std::string(noun) + " " + text::quote(file) + " (" + path + "): " + why;
+}
+
+// A USD mesh asset is composed and its meshes read (they are small, and a
+// broken layer should fail `validate`, at its file:line:col, not the run).
+std::optional<std::string> usdMeshProblem(const std::string& file, const std::string& path, const MeshFormat& format) {
+  if (std::optional<std::string> header = meshHeaderProblem(file, path, format)) return header;
+  try {
+    loadMeshFile(path);
+    return std::nullopt;
+  } catch (const RunError& e) {
+    return readProblem("mesh", file, path, e);
+  }
+}
+
 // Whether the image's header reads: any format OpenImageIO reads, within
 // the size limits. Only the header is read, so `validate` stays fast.
 std::optional<std::string> imageProblem(const std::string& file, const std::string& path) {
@@ -168,9 +197,7 @@ std::optional<std::string> imageProblem(const std::string& file, const std::stri
     readImageHeader(path);
     return std::nullopt;
   } catch (const RunError& e) {
-    std::string why = e.what();
-    if (why.starts_with(path + ": ")) why.erase(0, path.size() + 2);  // the path is said once, below
-    return "texture " + text::quote(file) + " (" + path + "): " + why;
+    return readProblem("texture", file, path, e);
   }
 }
 
@@ -272,6 +299,7 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   if (!probe || probe.peek() == std::ifstream::traits_type::eof())
     return noun + " " + text::quote(file) + " (" + *path + ") cannot be read" + (probe ? ": it is empty" : "");
   if (kind == FileKind::Image) return imageProblem(file, *path);
+  if (mesh && mesh->sniff == sniffUsd) return usdMeshProblem(file, *path, *mesh);
   if (mesh) return meshHeaderProblem(file, *path, *mesh);
   return std::nullopt;
 }

@@ -12,6 +12,7 @@
 
 #include "assets/image_backend.h"
 #include "assets/image_framing.h"
+#include "assets/jpeg_header.h"
 #include "core/diagnostics.h"
 
 #ifndef SDG_IMAGES_MODULE_BUILD_PATH
@@ -160,12 +161,14 @@ float linearToSrgb(float linear) {
 }
 
 ImageHeader readImageHeader(const std::string& path) {
-  std::optional<ImageHeader> png = framed([&]() -> std::optional<ImageHeader> {
+  // PNG and JPEG headers are read here: `validate` then never opens the
+  // image module, whose loading costs more than reading a stage.
+  std::optional<ImageHeader> native = framed([&]() -> std::optional<ImageHeader> {
     Source src(path);
-    if (!isPng(src)) return std::nullopt;
-    return pngHeader(src);
+    if (isPng(src)) return pngHeader(src);
+    return readJpegHeader(src);
   });
-  if (png) return *png;
+  if (native) return *native;
   ImageHeader header;
   std::string error;
   return viaModule(backend().readHeader(path, header, error), std::move(header), error);

@@ -1,5 +1,7 @@
 #include "assets/mesh_loader.h"
 
+#include <atomic>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -118,7 +120,28 @@ MeshPart partFromMaterial(const aiMaterial* material, TextureNamer& textures) {
 
 }  // namespace
 
+namespace {
+std::atomic<UsdMeshReader> gUsdMeshReader{nullptr};
+
+bool isUsdMeshFile(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+}
+}  // namespace
+
+void setUsdMeshReader(UsdMeshReader reader) { gUsdMeshReader.store(reader); }
+
 MeshData loadMeshFile(const std::string& path, const std::string& submesh) {
+  if (isUsdMeshFile(path)) {
+    const UsdMeshReader reader = gUsdMeshReader.load();
+    if (!reader) throw RunError(path + ": USD mesh files are read only once a scene is loaded (scene_io)");
+    MeshData mesh = reader(path, submesh);
+    if (mesh.triangleCount() > kMaxMeshTriangles)
+      throw RunError(path + ": " + std::to_string(mesh.triangleCount()) + " triangles; meshes are limited to " +
+                     std::to_string(kMaxMeshTriangles));
+    return mesh;
+  }
   Assimp::Importer importer;
   // Points and lines carry no surface; drop them during import.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

@@ -152,8 +152,11 @@ namespace {
 LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
   UsdImportReport report;
-  Scene scene = importUsdScene(request.scenePath, registry.catalog(), UsdImportOptions{}, report);
-  for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
+  UsdImportOptions options = usdImportOptionsFor(request.overrides);
+  options.registerScript = [&](const std::string& script) {
+    scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
+  };
+  Scene scene = importUsdScene(request.scenePath, registry.catalog(), options, report);
   Diagnostics diag;
   applyOverrides(request.overrides, registry.catalog(), scene, diag);
   if (!diag.hasErrors()) validateScene(scene, registry.catalog(), diag);

@@ -143,7 +143,41 @@ void applyToSettings(const Override& o, Scene& scene, Diagnostics& diag) {
   }
 }
 
+// PRIM.variants:SET: a variant selection (variantSelections).
+bool isVariantTarget(const std::string& target) {
+  if (target.empty() || target[0] != '/') return false;
+  const size_t dot = target.find('.');
+  return dot != std::string::npos && target.compare(dot + 1, std::string_view(kVariantsPrefix).size(), kVariantsPrefix) == 0;
+}
+
 }  // namespace
+
+std::vector<VariantSelection> variantSelections(std::span<const std::string> overrides, Diagnostics& diag) {
+  std::vector<VariantSelection> out;
+  for (size_t i = 0; i < overrides.size(); ++i) {
+    const std::string& text = overrides[i];
+    const size_t equals = text.find('=');
+    if (equals == std::string::npos || !isVariantTarget(text.substr(0, equals))) continue;
+    const std::string label = "--set[" + std::to_string(i + 1) + "]";
+    VariantSelection v;
+    v.loc = SourceLoc{label, 1, 1};
+    const size_t dot = text.find('.');
+    v.prim = text.substr(0, dot);
+    v.set = text.substr(dot + 1 + std::string(kVariantsPrefix).size(), equals - dot - 1 - std::string(kVariantsPrefix).size());
+    v.variant = text.substr(equals + 1);
+    if (std::string why = path::whyInvalid(v.prim); !why.empty()) {
+      diag.error(v.loc, label + ": " + v.prim + " is not a valid prim path: " + why);
+      continue;
+    }
+    if (v.set.empty() || v.variant.empty()) {
+      diag.error(v.loc, label + ": expected PRIM.variants:SET=VARIANT (e.g. /World/Chair.variants:color=red), found " +
+                            text::quote(text));
+      continue;
+    }
+    out.push_back(std::move(v));
+  }
+  return out;
+}
 
 void applyOverrides(std::span<const std::string> overrides, const BehaviorCatalog& catalog, Scene& scene,
                     Diagnostics& diag) {
@@ -159,6 +193,7 @@ void applyOverrides(std::span<const std::string> overrides, const BehaviorCatalo
       continue;
     }
     o.target = text.substr(0, equals);
+    if (isVariantTarget(o.target)) continue;  // composition's (variantSelections)
     try {
       o.value = parseYaml(std::string_view(text).substr(equals + 1), o.label, 0, static_cast<int>(equals) + 1);
     } catch (const SceneError& e) {

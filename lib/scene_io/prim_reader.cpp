@@ -6,6 +6,7 @@
 #include "core/text.h"
 #include "scene_io/map_reader.h"
 #include "scene_io/references.h"
+#include "scene_io/usd_import.h"
 #include "scene_io/value_reader.h"
 #include "stage/path.h"
 
@@ -193,6 +194,7 @@ void readMetadata(const RawNode& node, const std::string& what, Prim& prim, Diag
 void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, Diagnostics& diag) {
   if (!decl.over) prim.loc() = decl.loc;
   bool opsReplaced = !decl.over;
+  size_t overrideOps = 0;  // an override's ops so far: they go before a mounted USD prim's units ops
   const RawNode& entry = *decl.entry;
   MapReader map(entry, prim.path(), diag);
   if (!map.ok() || entry.isNull()) return;
@@ -234,10 +236,14 @@ void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, 
           continue;
         }
         if (!opsReplaced) {
-          prim.xformOps().clear();
+          // The override's ops replace the asset's, but not the units
+          // correction of a USD asset mounted here (usd_import.h), which
+          // stays after them as Omniverse's unitsResolve ops do.
+          std::erase_if(prim.xformOps(), [](const XformOp& o) { return o.suffix != kUnitsResolveSuffix; });
           opsReplaced = true;
         }
-        prim.xformOps().push_back(std::move(*op));
+        if (decl.over) prim.xformOps().insert(prim.xformOps().begin() + std::ptrdiff_t(overrideOps++), std::move(*op));
+        else prim.xformOps().push_back(std::move(*op));
       }
       continue;
     }

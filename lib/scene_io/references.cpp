@@ -1,5 +1,6 @@
 #include "scene_io/references.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 
@@ -7,8 +8,11 @@
 #include "core/log.h"
 #include "core/text.h"
 #include "scene_io/map_reader.h"
+#include "scene_io/usd_import.h"
+#include "scene_io/usd_prim_labels.h"
 #include "scene_io/value_reader.h"
 #include "stage/path.h"
+#include "usd/layer_io.h"
 
 namespace sdg {
 namespace fs = std::filesystem;
@@ -124,10 +128,24 @@ std::optional<ReferenceSpec> readReferenceSpec(const RawNode& node, const std::s
       if (auto s = readString(*f, joinWhat(what, "file"), diag)) ref.file = *s;
     if (const RawNode* p = map.get("prim"))
       if (auto s = readString(*p, joinWhat(what, "prim"), diag)) ref.prim = *s;
+    if (const RawNode* v = map.get("variants")) {
+      MapReader sets(*v, joinWhat(what, "variants"), diag);
+      if (sets.ok())
+        for (const RawEntry& e : v->entries) {
+          sets.allow(e.key.scalar);
+          if (auto variant = readString(e.value, joinWhat(joinWhat(what, "variants"), e.key.scalar), diag))
+            ref.variants[e.key.scalar] = *variant;
+        }
+    }
     map.finish();
   }
   if (ref.file.empty()) {
     diag.error(node.loc, what + ": expected an asset file (a scene file), e.g. `reference: assets/drill.yaml`");
+    return std::nullopt;
+  }
+  if (!ref.variants.empty() && !isUsdFile(ref.file)) {
+    diag.error(node.loc, what + ".variants: variant selections are for USD files (.usd, .usda, .usdc, .usdz); " +
+                             text::quote(ref.file) + " is not one");
     return std::nullopt;
   }
   if (!ref.prim.empty())
@@ -175,6 +193,20 @@ void AssetLibrary::preloadFrom(const SceneDocument& doc, std::vector<std::string
     if (!ref) continue;  // buildScene reports it, in line order with the rest
     SourceLoc from = via.known() ? referencedFrom(ref->loc, via) : ref->loc;
     const std::string file = absoluteNormal(fs::path(ref->file).is_absolute() ? fs::path(ref->file) : dir / ref->file);
+    if (isUsdFile(file)) {
+      // The behavior scripts its prims list register before any prim is
+      // read, as a YAML asset's scripts: do. A broken file is reported
+      // where it is mounted.
+      try {
+        for (const std::string& script : usdBehaviorScripts(usdStage(file, {})))
+          if (std::find(scripts_.begin(), scripts_.end(), script) == scripts_.end()) {
+            scripts.push_back(DeclaredFile{script, from});
+            scripts_.push_back(script);
+          }
+      } catch (const usd::UsdError&) {
+      }
+      continue;
+    }
     for (const std::string& seen : chain)
       if (absoluteNormal(seen) == file)
         throw SceneError(from, primPath + ".reference: a reference cycle: " + chainText(chain, file));
@@ -225,6 +257,10 @@ void AssetLibrary::mount(const ReferenceSpec& ref, const std::string& fromDir, c
   const std::string what = mountPath + ".reference";
   const std::string file =
       absoluteNormal(fs::path(ref.file).is_absolute() ? fs::path(ref.file) : fs::path(fromDir) / ref.file);
+  if (isUsdFile(file)) {
+    mountUsd(ref, file, mountPath, stage, catalog, diag);
+    return;
+  }
   Asset* asset = nullptr;
   try {
     asset = &document(file, ref.loc);
@@ -302,9 +338,82 @@ void AssetLibrary::mount(const ReferenceSpec& ref, const std::string& fromDir, c
   copy(*root);
 }
 
+void AssetLibrary::mountUsd(const ReferenceSpec& ref, const std::string& file, const std::string& mountPath,
+                            Stage& stage, const BehaviorCatalog& catalog, Diagnostics& diag) {
+  const std::string what = mountPath + ".reference";
+  std::error_code ec;
+  if (!fs::is_regular_file(usd::splitPackagePath(file).first, ec)) {
+    diag.error(ref.loc, what + ": USD file not found; searched: " + file);
+    return;
+  }
+  UsdImportOptions options;
+  options.runDefaults = false;
+  usd::ComposeOptions composeOptions;
+  const usd::ComposedStage* stageRead = nullptr;
+  std::string root = ref.prim;
+  try {
+    if (root.empty()) {  // the defaultPrim, else the first root prim: known once composed
+      stageRead = &usdStage(file, composeOptions);
+      const std::vector<std::string> tops = stageRead->rootPrims();
+      root = !stageRead->defaultPrim.empty() ? "/" + stageRead->defaultPrim : tops.empty() ? "" : tops.front();
+      if (root.empty()) {
+        diag.error(ref.loc, what + ": " + ref.file + " has no prims to reference");
+        return;
+      }
+    }
+    // The reference's own selections, then --set's at or under the mount point.
+    for (const auto& [set, variant] : ref.variants) composeOptions.variantOverrides[root][set] = variant;
+    if (building_.empty())
+      for (size_t i = 0; i < selections_.size(); ++i) {
+        const VariantSelection& v = selections_[i];
+        if (v.prim != mountPath && !v.prim.starts_with(mountPath + "/")) continue;
+        composeOptions.variantOverrides[root + v.prim.substr(mountPath.size())][v.set] = v.variant;
+        selectionUsed_[i] = true;
+      }
+    if (!stageRead || !composeOptions.variantOverrides.empty()) stageRead = &usdStage(file, composeOptions);
+  } catch (const usd::UsdError& e) {
+    diag.error(ref.loc, what + ": " + e.what());
+    return;
+  }
+  const usd::ComposedStage& composed = *stageRead;
+  if (!composed.prim(root)) {
+    const std::vector<std::string> tops = composed.rootPrims();
+    diag.error(ref.loc, what + ": " + ref.file + " has no prim " + root + "; its root prims: " + text::join(tops, ", ") +
+                            text::didYouMean(root, tops));
+    return;
+  }
+  UsdImportReport report;
+  importUsdPrims(composed, root, stage, mountPath, catalog, options, report, diag);
+  for (const std::string& layer : report.layers) {
+    const std::string f = absoluteNormal(usd::splitPackagePath(layer).first);
+    if (std::find(usdFiles_.begin(), usdFiles_.end(), f) == usdFiles_.end()) usdFiles_.push_back(f);
+  }
+}
+
+const usd::ComposedStage& AssetLibrary::usdStage(const std::string& file, const usd::ComposeOptions& options) {
+  std::string key = file;
+  for (const auto& [prim, sets] : options.variantOverrides)
+    for (const auto& [set, variant] : sets) key += "\n" + prim + "{" + set + "=" + variant + "}";
+  std::shared_ptr<const usd::ComposedStage>& slot = usdStages_[key];
+  if (!slot)
+    slot = std::make_shared<const usd::ComposedStage>(
+        usd::composeStage(file, [](const std::string& id) { return usd::readLayerFile(id); }, options));
+  return *slot;
+}
+
+std::vector<VariantSelection> AssetLibrary::unusedVariantSelections() const {
+  std::vector<VariantSelection> out;
+  for (size_t i = 0; i < selections_.size(); ++i)
+    if (i >= selectionUsed_.size() || !selectionUsed_[i]) out.push_back(selections_[i]);
+  return out;
+}
+
 std::vector<std::string> AssetLibrary::files() const {
   std::vector<std::string> out;
   for (const auto& entry : assets_) out.push_back(entry.first);
+  for (const std::string& f : usdFiles_)
+    if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
+  std::sort(out.begin(), out.end());
   return out;
 }
 

@@ -22,11 +22,13 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "scene_io/overrides.h"
 #include "scene_io/raw_node.h"
 #include "scene_io/scene.h"
 #include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
 #include "stage/stage.h"
+#include "usd/compose.h"
 
 namespace sdg {
 
@@ -35,9 +37,16 @@ inline constexpr size_t kMaxReferenceDepth = 32;
 
 // What a `reference:` names: `reference: assets/drill.yaml` or
 // `reference: {file: assets/drill.yaml, prim: /Drill}`.
+//
+// A USD file (.usd, .usda, .usdc, .usdz) mounts the same way: the prim
+// named (else the layer's defaultPrim, else its first root prim) and its
+// subtree, imported as a USD stage is (usd_import.h), with variant
+// selections for that prim: `reference: {file: chair.usda, variants:
+// {color: red}}` (USD files only).
 struct ReferenceSpec {
   std::string file;  // as written, relative to the referencing file's folder
-  std::string prim;  // "" = the asset's first top-level prim
+  std::string prim;  // "" = the asset's first top-level prim (a USD file's defaultPrim)
+  std::map<std::string, std::string> variants;  // variant set -> variant, on the mounted prim
   SourceLoc loc;     // the `reference:` value
 };
 std::optional<ReferenceSpec> readReferenceSpec(const RawNode& node, const std::string& what, Diagnostics& diag);
@@ -70,6 +79,15 @@ class AssetLibrary {
   void mount(const ReferenceSpec& ref, const std::string& fromDir, const std::string& mountPath, Stage& stage,
              const BehaviorCatalog& catalog, Diagnostics& diag);
 
+  // `--set PRIM.variants:SET=VARIANT` selections: those at or under the
+  // mount point of a USD reference of the top-level scene apply to it.
+  void setVariantSelections(std::vector<VariantSelection> selections) {
+    selections_ = std::move(selections);
+    selectionUsed_.assign(selections_.size(), false);
+  }
+  // The selections no USD reference took (each an error for the caller).
+  std::vector<VariantSelection> unusedVariantSelections() const;
+
   // Every asset script loaded through preload (absolute, in load order).
   const std::vector<std::string>& scripts() const { return scripts_; }
   // How many asset files were read (each once).
@@ -84,7 +102,18 @@ class AssetLibrary {
                    std::vector<DeclaredFile>& scripts);
   const Scene* built(Asset& asset, const BehaviorCatalog& catalog, const SourceLoc& from, Diagnostics& diag);
 
+  void mountUsd(const ReferenceSpec& ref, const std::string& file, const std::string& mountPath, Stage& stage,
+                const BehaviorCatalog& catalog, Diagnostics& diag);
+
   std::map<std::string, std::unique_ptr<Asset>> assets_;  // by absolute normalized path
+  // A USD file composed with these variant choices, once per load (a file
+  // mounted many times is read once); UsdError when it does not compose.
+  const usd::ComposedStage& usdStage(const std::string& file, const usd::ComposeOptions& options);
+
+  std::map<std::string, std::shared_ptr<const usd::ComposedStage>> usdStages_;  // by file and choices
+  std::vector<std::string> usdFiles_;                       // USD layers (packages) mounted, absolute
+  std::vector<VariantSelection> selections_;
+  std::vector<bool> selectionUsed_;
   std::vector<std::string> building_;                       // the chain being built, for cycles
   std::vector<std::string> scripts_;
   std::map<std::string, std::string> texts_;

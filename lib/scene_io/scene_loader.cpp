@@ -9,6 +9,7 @@
 #include "scene_io/prim_reader.h"
 #include "scene_io/references.h"
 #include "scene_io/scene_validate.h"
+#include "scene_io/usd_mesh_asset.h"
 #include "scene_io/value_reader.h"
 #include "scene_io/yaml_events.h"
 
@@ -135,6 +136,24 @@ std::vector<std::string> readStringList(const RawNode& node, const std::string& 
 
 }  // namespace
 
+void readSettingSections(MapReader& top, Scene& scene, Diagnostics& diag) {
+  const struct {
+    const char* name;
+    std::span<const AttributeSpec> specs;
+    OptionSet& into;
+  } sections[] = {{"render", renderOptionSpecs(), scene.render},
+                  {"physics", physicsOptionSpecs(), scene.physics},
+                  {"capture", captureOptionSpecs(), scene.capture},
+                  {"run", runOptionSpecs(), scene.run}};
+  for (const auto& s : sections)
+    if (const RawNode* n = top.get(s.name)) {
+      MapReader section(*n, s.name, diag);
+      readOptions(section, s.specs, s.into, diag);
+    }
+  if (const RawNode* n = top.get("writer")) readWriters(*n, scene, diag);
+  if (const RawNode* n = top.get("events")) readEvents(*n, scene, diag);
+}
+
 Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::span<const std::string> overrides,
                  AssetLibrary* assets) {
   std::unique_ptr<AssetLibrary> ownAssets;
@@ -142,6 +161,7 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
     ownAssets = std::make_unique<AssetLibrary>(buildAssetScene);
     assets = ownAssets.get();
   }
+  registerUsdMeshAssets();  // `asset: x.usd` meshes, for whatever draws this scene
   Diagnostics diag;
   Scene scene;
   scene.sourcePath = doc.path;
@@ -174,26 +194,15 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
       scene.isaacAssetsLoc = n->loc;
     }
   }
-  if (const RawNode* n = top.get("render")) {
-    MapReader section(*n, "render", diag);
-    readOptions(section, renderOptionSpecs(), scene.render, diag);
-  }
-  if (const RawNode* n = top.get("physics")) {
-    MapReader section(*n, "physics", diag);
-    readOptions(section, physicsOptionSpecs(), scene.physics, diag);
-  }
-  if (const RawNode* n = top.get("capture")) {
-    MapReader section(*n, "capture", diag);
-    readOptions(section, captureOptionSpecs(), scene.capture, diag);
-  }
-  if (const RawNode* n = top.get("run")) {
-    MapReader section(*n, "run", diag);
-    readOptions(section, runOptionSpecs(), scene.run, diag);
-  }
-  if (const RawNode* n = top.get("writer")) readWriters(*n, scene, diag);
-  if (const RawNode* n = top.get("events")) readEvents(*n, scene, diag);
+  readSettingSections(top, scene, diag);
+  // A nested asset's build has no overrides: it keeps the top scene's selections.
+  if (!overrides.empty()) assets->setVariantSelections(variantSelections(overrides, diag));
   if (const RawNode* prims = top.require("prims"))
     readPrims(*prims, catalog, scene.stage, diag, PrimReferences{assets, scene.sourceDir});
+  if (!diag.hasErrors() && !overrides.empty())
+    for (const VariantSelection& v : assets->unusedVariantSelections())
+      diag.error(v.loc, v.prim + " is not a prim of a USD file the scene mounts (reference: "
+                                         "FILE.usd); variant selections apply to USD prims");
   top.finish();
 
   // Overrides apply to a scene that parsed; their own problems join the list.

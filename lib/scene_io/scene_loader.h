@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/diagnostics.h"
 #include "scene_io/scene.h"
 #include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
@@ -15,6 +16,12 @@
 namespace sdg {
 
 class AssetLibrary;
+class MapReader;
+
+// The run's sections of a scene mapping (render, physics, capture, run,
+// writer, events), read into `scene` with the YAML loader's checks; also
+// how a USD layer's customLayerData["sdgbehave"] comes back (usd_settings.cpp).
+void readSettingSections(MapReader& top, Scene& scene, Diagnostics& diag);
 
 // Builds the scene; throws SceneError listing every problem. Prims with
 // `reference:` are mounted from `assets` (a library of this load; one is

@@ -137,13 +137,21 @@ usd::Value jsonToUsd(const nlohmann::ordered_json& j) {
       return usd::Value::textArray(Kind::String, std::move(xs));
     }
   }
-  return usd::Value::text(Kind::String, j.dump());  // nested lists, empty lists, null
+  if (j.is_array() && j.empty()) return usd::Value::textArray(Kind::String, {});
+  return usd::Value::text(Kind::String, j.dump());  // nested lists, null
 }
 
 nlohmann::ordered_json optionsJson(const OptionSet& options) {
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [name, value] : options.values()) j[name] = valueToJson(value);
   return j;
+}
+
+// A payload's keys in their order: a USD dictionary keeps its keys sorted.
+std::vector<std::string> payloadKeys(const Payload& payload) {
+  std::vector<std::string> keys;
+  for (const auto& entry : payload.entries()) keys.push_back(entry.first);
+  return keys;
 }
 
 nlohmann::ordered_json payloadJson(const Payload& payload) {
@@ -263,6 +271,7 @@ class Exporter {
     Spec& spec = primSpec(path, usd::Specifier::Def, std::string(prim.typeInfo().name));
     std::vector<std::string> apiSchemas;
     usd::Dictionary customData;
+    fallbacks_.clear();
     if (prim.type() == PrimType::Mesh) writeMeshReference(prim, spec);
     if (prim.type() == PrimType::Material) writeMaterial(prim);
     else writeAttributes(prim);
@@ -278,6 +287,11 @@ class Exporter {
       else if (key == "documentation") spec.fields[field::kDocumentation] = usd::Value::text(Kind::String, value);
       else customData[key] = usd::Value::text(Kind::String, value);
     }
+    // What the layer states only for other tools (the stage's fallbacks,
+    // a prototype's subdivisionScheme): the import leaves it unauthored.
+    if (prim.type() == PrimType::Mesh && !prim.getString("asset").empty() && !prim.findAttribute("subdivisionScheme"))
+      fallbacks_.push_back("subdivisionScheme");
+    if (!fallbacks_.empty()) customData[kFallbacksKey] = usd::Value::textArray(Kind::Token, fallbacks_);
     if (!customData.empty()) spec.fields[field::kCustomData] = usd::Value::dict(std::move(customData));
     writeSemantics(prim, apiSchemas);
     writeBehaviors(prim);
@@ -301,6 +315,7 @@ class Exporter {
       const Attribute* a = prim.findAttribute(schema.name);
       bool always = (schema.name == "primvars:displayColor") || (prim.type() == PrimType::Plane && schema.name == "doubleSided");
       if (!a && !always) continue;
+      if (!a) fallbacks_.push_back(schema.name);
       const Value& v = a ? a->value : schema.defaultValue;
       if (prim.type() == PrimType::Mesh && (schema.name == "asset" || schema.name == "submesh")) {
         stageAttribute(path, "sdgbehave:" + schema.name, v, true);
@@ -529,8 +544,10 @@ class Exporter {
       const EventStep& e = scene_.events[i];
       events["event" + std::to_string(i)] = {{"publish", e.publish},
                                             {"payload", payloadJson(e.payload)},
+                                            {"payload_keys", payloadKeys(e.payload)},
                                             {"wait_event", e.waitEvent},
                                             {"wait_for", payloadJson(e.waitFor)},
+                                            {"wait_for_keys", payloadKeys(e.waitFor)},
                                             {"max_updates", e.maxUpdates}};
     }
     j["events"] = events;
@@ -547,6 +564,7 @@ class Exporter {
   std::map<std::string, std::string> prototypes_;               // mesh key id -> prototype path
   std::vector<std::pair<std::string, std::string>> prototypeOrder_;
   std::set<std::string> withoutScript_;
+  std::vector<std::string> fallbacks_;  // of the prim being written
 };
 
 }  // namespace

@@ -23,6 +23,12 @@ namespace sdg {
 inline constexpr const char* kIsaacBehaviorScriptsRoot =
     "/isaac-sim/exts/isaacsim.replicator.behavior/isaacsim/replicator/behavior/behaviors";
 
+// A prim's customData key listing the attributes the layer writes only
+// for other tools (the stage's fallbacks that USD's schemas do not share,
+// such as every gprim's primvars:displayColor): the import leaves them
+// unauthored, as they were in the scene.
+inline constexpr const char* kFallbacksKey = "sdgbehave:fallbacks";
+
 struct UsdExportOptions {
   // The folder of Isaac's behavior scripts: built-in behaviors are written
   // as <root>/<isaac script file> (locationRandomizer -> location_randomizer.py).

@@ -11,8 +11,13 @@
 #include "core/text.h"
 #include "scene_io/overrides.h"
 #include "scene_io/scene_validate.h"
+#include "scene_io/usd_export.h"
 #include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
+#include "scene_io/usd_mesh_asset.h"
+#include "scene_io/usd_prim_labels.h"
+#include "scene_io/usd_settings.h"
+#include "scene_io/usd_value_node.h"
 #include "stage/path.h"
 #include "usd/layer_io.h"
 
@@ -53,7 +58,7 @@ bool quietlyIgnored(const std::string& name) {
       "creaseSharpnesses", "holeIndices", "velocities", "accelerations", "material:binding"};
   if (std::find(kNames.begin(), kNames.end(), name) != kNames.end()) return true;
   for (const char* prefix : {"xformOp:", "primvars:", "semantic:", "semantics:", "omni:", "physics:", "physx",
-                             "material:binding", "exposedVar:", "inputs:", "outputs:", "info:", "shaping:",
+                             "material:binding", "exposedVar:", "sdgbehave:", "inputs:", "outputs:", "info:", "shaping:",
                              "shadow:", "light:", "collection:", "proxy", "ui:"})
     if (name.rfind(prefix, 0) == 0) return true;
   return false;
@@ -83,8 +88,11 @@ class Importer {
       diag_.error(SourceLoc{composed_.rootLayer, 0, 0}, "no prim " + sourceRoot + " in " + composed_.rootLayer);
       return;
     }
+    // Mounted in a YAML scene: the correction goes after the prim's own ops,
+    // as for a USD reference, so that the scene's overrides of them keep it.
     Prim* parent = stage_.find(std::string(path::parent(mountPath)));
-    importPrim(*prim, *parent, rootUnits, scale);
+    mountUnits_ = rootUnits;
+    importPrim(*prim, *parent, {}, scale);
   }
 
   std::string mapPath(const std::string& source) const {
@@ -120,6 +128,8 @@ class Importer {
     std::vector<XformOp> ops = outerUnits;
     for (XformOp& op : usd_map::xformOpsOf(prim, parentWorld, diag_)) ops.push_back(std::move(op));
     double scale = unitScale;
+    if (prim.path == sourceRoot_ && sourceRoot_ != "/")
+      for (const XformOp& op : mountUnits_) ops.push_back(op);
     if (prim.unitsChange) {
       for (XformOp& op : usd_map::unitsOps(prim.unitsChange->asset, prim.unitsChange->into)) ops.push_back(std::move(op));
       scale *= usd_map::unitsScale(prim.unitsChange->asset, prim.unitsChange->into);
@@ -134,8 +144,9 @@ class Importer {
                           options_, report_, diag_);
       return;  // its shaders are the material's
     }
+    importMetadata(prim, p);
     importAttributes(prim, p, *type, scale);
-    if (*type == PrimType::Mesh) importMesh(prim, p);
+    if (*type == PrimType::Mesh && !importMeshAsset(prim, p)) importMesh(prim, p);
     importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
                         report_, diag_);
     for (const std::string& child : prim.children)
@@ -144,9 +155,15 @@ class Importer {
   }
 
   void importAttributes(const ComposedPrim& prim, Prim& p, PrimType type, double unitScale) {
+    std::vector<std::string> fallbacks;  // written by export-usd for other tools only
+    if (auto custom = prim.metadata.find("customData"); custom != prim.metadata.end() && custom->second.dictionary)
+      if (auto list = custom->second.dictionary->find(kFallbacksKey); list != custom->second.dictionary->end())
+        fallbacks = list->second.strings;
     for (const ComposedProperty& prop : prim.properties) {
       if (prop.isRelationship || prop.value.empty()) continue;
+      if (std::find(fallbacks.begin(), fallbacks.end(), prop.name) != fallbacks.end()) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
+      if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
         if (!spec && !quietlyIgnored(prop.name))
           warnOnce(prop.loc, "attr:" + prim.typeName + ":" + prop.name,
@@ -174,6 +191,48 @@ class Importer {
       }
       p.setAttribute(spec->name, *v).loc = prop.loc;
     }
+  }
+
+  // A `custom` attribute of a type the stage has (`custom double user:weight`,
+  // as export-usd writes a scene's custom attributes) becomes a custom
+  // attribute of the prim; false for other types (reported by the caller).
+  bool importCustom(const ComposedPrim& prim, const ComposedProperty& prop, Prim& p) {
+    const std::optional<ValueType> type = valueTypeFromName(prop.typeName);
+    if (!type) return false;
+    if (std::optional<Value> v = readUsdValue(prop, *type, prim.path + "." + prop.name, diag_))
+      p.setAttribute(prop.name, *v, true).loc = prop.loc;
+    return true;
+  }
+
+  // Prim metadata the stage keeps: `kind`, `documentation`, and the string
+  // entries of `customData` (how export-usd writes a prim's metadata:).
+  void importMetadata(const ComposedPrim& prim, Prim& p) {
+    if (!prim.kind.empty()) p.metadata()["kind"] = prim.kind;
+    auto doc = prim.metadata.find("documentation");
+    if (doc != prim.metadata.end() && usd::isText(doc->second.kind) && !doc->second.strings.empty())
+      p.metadata()["documentation"] = doc->second.strings[0];
+    auto custom = prim.metadata.find("customData");
+    if (custom != prim.metadata.end() && custom->second.dictionary)
+      for (const auto& [key, value] : *custom->second.dictionary)
+        if (value.kind == usd::Kind::String && !value.isArray && !value.strings.empty())
+          p.metadata()[key] = value.strings[0];
+  }
+
+  // A Mesh that export-usd wrote from a mesh file keeps the file in
+  // `sdgbehave:asset` (and `sdgbehave:submesh`): the file is the mesh again,
+  // with its own materials, rather than the triangles written for other
+  // tools. False when the prim has no such attribute.
+  bool importMeshAsset(const ComposedPrim& prim, Prim& p) {
+    const ComposedProperty* asset = prim.property("sdgbehave:asset");
+    if (!asset || asset->value.empty()) return false;
+    for (const char* name : {"asset", "submesh"}) {
+      const ComposedProperty* prop = prim.property(std::string("sdgbehave:") + name);
+      if (!prop || prop->value.empty()) continue;
+      if (std::optional<Value> v = readUsdValue(*prop, *findSchemaAttribute(PrimType::Mesh, name),
+                                                prim.path + ".sdgbehave:" + name, diag_))
+        p.setAttribute(name, *v).loc = prop->loc;
+    }
+    return true;
   }
 
   // The mesh's faces, less those a GeomSubset with a material binding
@@ -238,6 +297,7 @@ class Importer {
   UsdImportReport& report_;
   Diagnostics& diag_;
   std::string sourceRoot_, mountPath_;
+  std::vector<XformOp> mountUnits_;  // the file's units into the stage's, on a mounted root
   std::set<std::string> warned_;
 };
 
@@ -272,8 +332,26 @@ void importUsdPrims(const usd::ComposedStage& composed, const std::string& sourc
   importer.run(sourceRoot, mountPath);
 }
 
+bool isUsdFile(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+}
+
+UsdImportOptions usdImportOptionsFor(std::span<const std::string> overrides) {
+  Diagnostics diag;
+  UsdImportOptions options;
+  for (const VariantSelection& v : variantSelections(overrides, diag)) {
+    options.variants[v.prim][v.set] = v.variant;
+    options.variantLocs[v.prim + " " + v.set] = v.loc;
+  }
+  diag.throwIfErrors();
+  return options;
+}
+
 Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, const UsdImportOptions& options,
                      UsdImportReport& report) {
+  registerUsdMeshAssets();  // `asset: x.usd` meshes, for whatever draws this scene
   usd::ComposeOptions composeOptions;
   composeOptions.variantOverrides = options.variants;
   usd::ComposedStage composed;
@@ -284,6 +362,13 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
     std::string message = e.what();
     const std::string where = e.loc().str() + ": ";
     if (e.loc().known() && message.rfind(where, 0) == 0) message = message.substr(where.size());
+    // A chosen set or variant the stage lacks: reported at the choice.
+    for (const auto& [key, loc] : options.variantLocs) {
+      const std::string prim = key.substr(0, key.find(' ')), set = key.substr(key.find(' ') + 1);
+      if (message.find("variant override " + prim + " " + set + "=") != std::string::npos ||
+          message.find(prim + ": variant set '" + set + "' has no variant") != std::string::npos)
+        throw SceneError(loc, message);
+    }
     throw SceneError(e.loc(), message);
   }
   Scene scene;
@@ -295,10 +380,16 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
       it != composed.layerMetadata.end() && usd::isNumeric(it->second.kind) && !it->second.numbers.empty() &&
       it->second.numbers[0] >= 1)
     scene.stage.metadata().timeCodesPerSecond = it->second.numbers[0];
+  // The behavior scripts the prims list are the scene's scripts.
+  scene.scripts = usdBehaviorScripts(composed);
+  if (options.registerScript)
+    for (const std::string& script : scene.scripts) options.registerScript(script);
   Diagnostics diag;
   importUsdPrims(composed, "/", scene.stage, "/", catalog, options, report, diag);
+  // A stage export-usd wrote says its own run settings; others get defaults.
+  const bool exported = importUsdSceneSettings(composed, scene, diag);
   diag.throwIfErrors();
-  addDefaultRunSettings(scene);
+  if (!exported && options.runDefaults) addDefaultRunSettings(scene);
   return scene;
 }
 

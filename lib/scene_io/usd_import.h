@@ -27,6 +27,7 @@
 // reports them as it reports a YAML scene's.
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,18 @@ namespace sdg {
 struct UsdImportOptions {
   // --set style variant choices: prim path -> variant set -> variant.
   usd::VariantOverrides variants;
+  // Where each choice was made ("PRIM SET" -> the --set or YAML value), so
+  // that a set or variant the stage lacks is reported there.
+  std::map<std::string, SourceLoc> variantLocs;
+  // A framing camera and lights where the stage has none, and the default
+  // writer and capture: for a stage run on its own, not for one mounted in
+  // a YAML scene.
+  bool runDefaults = true;
+  // Registers a behavior script the stage lists (usdBehaviorScripts) in the
+  // caller's registry, whose catalog the import is given: called after
+  // composition, before any prim is imported. Unset: such scripts must be
+  // registered already.
+  std::function<void(const std::string& script)> registerScript;
   // Isaac's six behavior scripts named by file stand in for the built-ins
   // of the same name; other .py files listed in omni:scripting:scripts are
   // loaded as behavior scripts (the loader registers them before import).
@@ -53,6 +66,18 @@ struct UsdImportReport {
   std::vector<std::string> layers;
   std::vector<std::string> warnings;
 };
+
+// The suffix of the ops that correct a USD file's units and up axis
+// (xformOp:rotateX:unitsResolve, xformOp:scale:unitsResolve), as Omniverse
+// names them: a YAML override of a mounted USD prim's ops keeps them.
+inline constexpr std::string_view kUnitsResolveSuffix = "unitsResolve";
+
+// A USD layer or package by its extension: .usd, .usda, .usdc, .usdz (any case).
+bool isUsdFile(const std::string& path);
+
+// The options a run's --set overrides give: their variant selections
+// (PRIM.variants:SET=VARIANT). SceneError (exit 2) for a malformed one.
+UsdImportOptions usdImportOptionsFor(std::span<const std::string> overrides);
 
 // The whole scene of a USD stage file (`sdgbehave run stage.usda`). Throws
 // SceneError (exit 2) with every problem located.

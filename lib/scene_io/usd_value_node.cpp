@@ -5,7 +5,6 @@
 #include "scene_io/value_reader.h"
 
 namespace sdg {
-namespace {
 
 RawNode scalarNode(std::string text, bool quoted, const SourceLoc& loc) {
   RawNode n;
@@ -15,6 +14,8 @@ RawNode scalarNode(std::string text, bool quoted, const SourceLoc& loc) {
   n.loc = loc;
   return n;
 }
+
+namespace {
 
 // Shortest text that reads back as the same number (a float's value read
 // back as float, a double's as double).

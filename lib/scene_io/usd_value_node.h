@@ -6,6 +6,7 @@
 // of checks, so a value is accepted from a .usda exactly when it would be
 // accepted from a scene YAML.
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "core/diagnostics.h"
@@ -14,6 +15,9 @@
 #include "usd/compose.h"
 
 namespace sdg {
+
+// A scalar node at `loc` (quoted: a string, never a number or bool).
+RawNode scalarNode(std::string text, bool quoted, const SourceLoc& loc);
 
 // The value of `property` as a node at property.loc: numbers as plain
 // scalars, text as quoted scalars, vectors and arrays as sequences. Asset

@@ -4,6 +4,7 @@
 // baked into transform ops when the stage is imported.
 #include <cmath>
 
+#include "scene_io/usd_import.h"
 #include "scene_io/usd_import_internal.h"
 
 namespace sdg::usd_map {
@@ -85,7 +86,7 @@ std::vector<XformOp> unitsOps(const usd::LayerUnits& from, const usd::LayerUnits
     // Y up into Z up turns +Y onto +Z (a quarter turn about X); back the other way.
     XformOp r;
     r.kind = XformOpKind::RotateX;
-    r.suffix = "unitsResolve";
+    r.suffix = std::string(kUnitsResolveSuffix);
     r.value = Value::makeDouble(from.upAxis == "Y" ? 90.0 : -90.0);
     ops.push_back(r);
   }
@@ -93,7 +94,7 @@ std::vector<XformOp> unitsOps(const usd::LayerUnits& from, const usd::LayerUnits
   if (s != 1.0) {
     XformOp op;
     op.kind = XformOpKind::Scale;
-    op.suffix = "unitsResolve";
+    op.suffix = std::string(kUnitsResolveSuffix);
     op.value = Value::makeDouble3(Vec3d(s, s, s));
     ops.push_back(op);
   }

@@ -110,7 +110,9 @@ StudioSession::~StudioSession() = default;
 
 void StudioSession::load(const std::string& text) {
   SceneRequest request = options_.scene;
-  request.sceneText = text;
+  // A USD stage is read from its file (its text is not YAML); it reloads
+  // when the file changes, and edits here are refused (refuseDuringConflict).
+  if (!isUsdStagePath(request.scenePath)) request.sceneText = text;
   request.assetTexts = assetTexts();
   loaded_ = std::make_unique<LoadedScene>(loadSceneForRun(request));
   text_ = text;
@@ -369,6 +371,10 @@ std::unique_ptr<LoadedScene> StudioSession::check(const std::string& edited,
 }
 
 void StudioSession::refuseDuringConflict() const {
+  if (isUsdStagePath(options_.scene.scenePath))
+    throw StudioError(400, options_.scene.scenePath + " is a USD stage: the studio shows it and reloads it when the "
+                           "file changes, but edits YAML only; edit the layer, or `sdgbehave flatten` it to a YAML "
+                           "scene and open that");
   if (conflict_)
     throw StudioError(409, options_.scene.scenePath + " changed on disk while there are unsaved edits here, so edits "
                            "are refused until you reload it (dropping the edits here) or overwrite it with the edits "

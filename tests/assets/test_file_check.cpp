@@ -6,6 +6,7 @@
 
 #include "assets/asset_resolver.h"
 #include "assets/file_check.h"
+#include "scene_io/usd_mesh_asset.h"
 
 using namespace sdg;
 namespace fs = std::filesystem;
@@ -51,8 +52,22 @@ TEST_CASE("file problems: URL, USD, missing, empty, fine", "[assets]") {
   fs::copy_file(SDG_SOURCE_DIR "/tests/data/images/formats/pattern.png", dir / "ok.png");
   AssetResolver r({dir.string()});
   CHECK(fileProblem("https://example.com/a.png", FileKind::Image, r)->find("is a URL") != std::string::npos);
-  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("is a USD file: sdgbehave runs USD stages as scenes") !=
-        std::string::npos);
+  // USD files are mesh assets (scene_io/usd_mesh_asset.cpp): looked for and sniffed like the others.
+  CHECK(fileProblem("props/box.usd", FileKind::Mesh, r)->find("mesh 'props/box.usd' not found") == 0);
+  writeFile(dir / "fake.usda", "not usd at all");
+  CHECK(fileProblem("fake.usda", FileKind::Mesh, r)->ends_with("not a USD file: it starts with neither '#usda' (text), "
+                                                              "'PXR-USDC' (crate) nor a zip header (usdz)"));
+  // A USD mesh is composed and read (through the reader scene_io installs): a layer without a
+  // mesh, or one that does not parse, fails here at its file:line:col rather than in the run.
+  registerUsdMeshAssets();
+  writeFile(dir / "real.usda", "#usda 1.0\ndef Mesh \"M\" {\n  point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n"
+                               "  int[] faceVertexCounts = [3]\n  int[] faceVertexIndices = [0, 1, 2]\n}\n");
+  CHECK_FALSE(fileProblem("real.usda", FileKind::Mesh, r));
+  writeFile(dir / "empty.usda", "#usda 1.0\ndef Xform \"X\" {}\n");
+  CHECK(fileProblem("empty.usda", FileKind::Mesh, r)->ends_with("no Mesh prim with faces in the USD file"));
+  writeFile(dir / "broken.usda", "#usda 1.0\ndef Mesh \"M\" {\n  point3f[] points = [(0,0)]\n}\n");
+  CHECK_THAT(*fileProblem("broken.usda", FileKind::Mesh, r),
+             Catch::Contains("cannot read the USD mesh: ") && Catch::Contains("broken.usda:3:"));
   std::string missing = *fileProblem("nope.png", FileKind::Image, r);
   CHECK(missing.find("texture 'nope.png' not found; searched: " + (dir / "nope.png").string()) == 0);
   CHECK(fileProblem("empty.png", FileKind::Image, r)->find("cannot be read: it is empty") != std::string::npos);
@@ -146,7 +161,7 @@ TEST_CASE("file problems: a mesh is a file of a format the loader reads, by exte
   };
   // A wrong extension is refused without opening the file.
   CHECK(problem("picture.png") == "mesh 'picture.png' is not a mesh format sdgbehave reads; mesh files end in .obj, "
-                                  ".glb, .gltf, .fbx, .ply, .stl, .dae");
+                                  ".glb, .gltf, .fbx, .ply, .stl, .dae, .usd, .usda, .usdc, .usdz");
   CHECK(problem("accounts").starts_with("mesh 'accounts' is not a mesh format sdgbehave reads"));
   CHECK(problem("/etc/passwd").starts_with("mesh '/etc/passwd' is not a mesh format sdgbehave reads"));
   // The right extension on the wrong bytes.
@@ -160,7 +175,7 @@ TEST_CASE("file problems: a mesh is a file of a format the loader reads, by exte
   CHECK(problem("odd.ply").ends_with("not a PLY: it does not start with 'ply'"));
   CHECK(problem("odd.fbx").ends_with("not an FBX: neither 'Kaydara FBX Binary' nor an ASCII FBX's '; FBX' at its start"));
   CHECK(readableExtensions(FileKind::Mesh) ==
-        std::vector<std::string>{".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae"});
+        std::vector<std::string>{".obj", ".glb", ".gltf", ".fbx", ".ply", ".stl", ".dae", ".usd", ".usda", ".usdc", ".usdz"});
 }
 
 TEST_CASE("file problems: a confined resolver opens nothing outside its roots", "[assets]") {

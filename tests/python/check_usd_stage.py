@@ -5,7 +5,9 @@
                                         shows the red cube where its box says, labelled `box` from the
                                         layer's Isaac semantics; --camera picks a camera or exits 2
                                         naming the flag; a broken layer fails validate with exit 2 at
-                                        its file:line:col.
+                                        its file:line:col; flatten writes a YAML scene that inspects and
+                                        runs the same; studio opens the stage (tree and preview) and
+                                        refuses edits (it edits YAML only).
   check_usd_stage.py BIN REPO samples   every .usd/.usda/.usdz under <repo>/../shared/usd-samples:
                                         validate exits 0 or a clean 2; Teapot and one .usdz run to a
                                         dataset whose rgb is not empty. Exit 77 when the samples are absent.
@@ -20,7 +22,8 @@ import tempfile
 import numpy as np
 from PIL import Image
 
-from checklib import check, finish
+from checklib import check, dataset_hashes, finish
+from studio_server import Studio
 
 
 def sdg(binary, *args, timeout=300):
@@ -92,6 +95,48 @@ def check_stage(binary, repo, tmp):
     check(expected in result.stderr, f"validate bad_syntax.usda said {result.stderr!r}, expected {expected!r}")
 
 
+def check_flatten_and_studio(binary, repo, tmp):
+    """flatten of a usda stage writes a YAML scene that reloads to the same stage (inspect, less the
+    lines naming the source) and runs to the same dataset, byte for byte; studio opens the stage and
+    shows its prim tree and a preview."""
+    stage = os.path.join(repo, "tests", "data", "usd", "cube_camera.usda")
+    flat = os.path.join(tmp, "cube_flat.yaml")
+    result = sdg(binary, "flatten", stage, "-o", flat)
+    check(result.returncode == 0, f"flatten cube_camera.usda: exit {result.returncode}: {result.stderr}")
+    if result.returncode != 0:
+        return
+
+    def inspected(path):
+        r = sdg(binary, "inspect", path)
+        check(r.returncode == 0, f"inspect {path}: exit {r.returncode}: {r.stderr}")
+        return [line.split("  # ")[0] for line in r.stdout.splitlines()
+                if not line.startswith("scene ") and not line.startswith("asset_roots: ")]
+
+    a, b = inspected(stage), inspected(flat)
+    diff = [f"  usda: {x}\n  yaml: {y}" for x, y in zip(a, b) if x != y]
+    check(len(a) == len(b) and not diff, f"flatten: inspect differs ({len(a)}, {len(b)} lines):\n" + "\n".join(diff[:6]))
+    hashes = []
+    for name, source in (("usda", stage), ("flat", flat)):
+        out = os.path.join(tmp, "flat_" + name)
+        r = sdg(binary, "run", source, "--frames", "1", "--resolution", "64x48", "--out", out)
+        check(r.returncode == 0, f"run {source}: exit {r.returncode}: {r.stderr[-400:]}")
+        # .sdgbehave/run.json hashes the input files, which differ.
+        hashes.append({f: h for f, h in dataset_hashes(out).items() if f != os.path.join(".sdgbehave", "run.json")})
+    check(hashes[0] and hashes[0] == hashes[1], "flatten: the flattened scene's dataset differs from the stage's")
+
+    studio = Studio(binary, stage)
+    try:
+        status, tree = studio.request("/api/tree")
+        check(status == 200 and "/World/Box" in json.dumps(tree), f"studio /api/tree: {status} {str(tree)[:200]}")
+        status, png = studio.request("/api/preview?frame=0", raw=True)
+        check(status == 200 and png[:4] == b"\x89PNG", f"studio /api/preview of a USD stage: {status}")
+        status, answer = studio.request("/api/edit", {"prim": "/World/Box", "keys": ["size"], "value": 2})
+        check(status == 400 and "is a USD stage" in json.dumps(answer),
+              f"studio /api/edit of a USD stage: {status} {answer}, expected 400 (edits YAML only)")
+    finally:
+        studio.stop()
+
+
 def check_samples(binary, repo, tmp):
     samples = os.path.normpath(os.path.join(repo, "..", "shared", "usd-samples"))
     if not os.path.isdir(samples):
@@ -123,6 +168,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         if part == "stage":
             check_stage(binary, repo, tmp)
+            check_flatten_and_studio(binary, repo, tmp)
         else:
             check_samples(binary, repo, tmp)
     return finish(f"usd {part}: ok")

@@ -1,0 +1,79 @@
+#include "scene_io/usd_mesh_asset.h"
+
+#include "assets/inline_mesh.h"
+#include "assets/mesh_loader.h"
+#include "core/diagnostics.h"
+#include "scene_io/usd_import.h"
+#include "usd/layer_io.h"
+
+namespace sdg {
+namespace {
+
+// The part a Mesh prim draws with: its bound Material's inputs, else its
+// displayColor.
+MeshPart partFor(const Stage& stage, const Prim& mesh) {
+  MeshPart part;
+  part.hasMaterial = true;
+  const Prim* material = mesh.material() ? stage.find(mesh.material()->path) : nullptr;
+  if (!material) {
+    if (const Value* c = mesh.value("primvars:displayColor")) part.baseColor = c->get<Vec3f>();
+    return part;
+  }
+  part.baseColor = material->value("inputs:diffuse_color_constant")->get<Vec3f>();
+  part.maps.baseColor = material->getString("inputs:diffuse_texture");
+  part.roughness = material->getFloat("inputs:reflection_roughness_constant");
+  part.metallic = material->getFloat("inputs:metallic_constant");
+  return part;
+}
+
+// `m` transformed by `world` and appended to `out`, its triangles as one part.
+void append(MeshData& out, const MeshData& m, const Matrix4d& world, MeshPart part) {
+  const Eigen::Matrix3d normalMatrix = world.topLeftCorner<3, 3>().inverse().transpose();
+  const uint32_t base = uint32_t(out.positions.size());
+  for (const Vec3f& p : m.positions) out.positions.push_back((world * p.cast<double>().homogeneous()).head<3>().cast<float>());
+  for (const Vec3f& n : m.normals) out.normals.push_back((normalMatrix * n.cast<double>()).normalized().cast<float>());
+  for (size_t i = 0; i < m.positions.size(); ++i)
+    out.uvs.push_back(i < m.uvs.size() ? m.uvs[i] : Eigen::Vector2f(0.0f, 0.0f));
+  part.firstIndex = uint32_t(out.indices.size());
+  part.indexCount = uint32_t(m.indices.size());
+  for (uint32_t i : m.indices) out.indices.push_back(base + i);
+  out.parts.push_back(part);
+}
+
+}  // namespace
+
+MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh) {
+  usd::ComposedStage composed;
+  try {
+    composed = usd::composeStage(path, [](const std::string& id) { return usd::readLayerFile(id); }, {});
+  } catch (const usd::UsdError& e) {
+    throw RunError(path + ": cannot read the USD mesh: " + e.what());
+  }
+  Stage stage;
+  Diagnostics diag;
+  UsdImportReport report;
+  UsdImportOptions options;
+  options.runDefaults = false;
+  options.builtinsForIsaacScripts = false;
+  const BehaviorCatalog noBehaviors;
+  importUsdPrims(composed, "/", stage, "/", noBehaviors, options, report, diag);
+  for (const Diagnostic& d : diag.all())
+    if (d.severity == Severity::Error) throw RunError(path + ": cannot read the USD mesh: " + d.loc.str() + ": " + d.message);
+  MeshData out;
+  stage.traverse([&](const Prim& prim) {
+    if (prim.type() != PrimType::Mesh) return;
+    if (!submesh.empty() && prim.path() != submesh && !prim.path().starts_with(submesh + "/")) return;
+    std::shared_ptr<const InlineMesh> mesh = inlineMeshOf(prim);
+    if (!mesh) return;
+    append(out, triangulateInlineMesh(*mesh, path + " " + prim.path()), stage.worldMatrix(prim), partFor(stage, prim));
+  });
+  if (out.indices.empty())
+    throw RunError(path + ": no Mesh prim with faces" + (submesh.empty() ? "" : " at or under " + submesh) +
+                   " in the USD file");
+  out.updateBounds();
+  return out;
+}
+
+void registerUsdMeshAssets() { setUsdMeshReader(&loadUsdMeshAsset); }
+
+}  // namespace sdg
