@@ -8,9 +8,9 @@ set -euo pipefail
 seconds=${FUZZ_SECONDS:-60}
 build=build/fuzz
 cmake --preset fuzz >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header
 mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/corpus/usda" "$build/corpus/crate" "$build/corpus/usdz" \
-  "$build/artifacts"
+  "$build/corpus/image" "$build/artifacts"
 # usda seeds: the USD sample files beside the repository, when present.
 if [[ -d ../shared/usd-samples ]]; then
   find ../shared/usd-samples -name '*.usd*' -size -300k -exec grep -l '^#usda' {} + | while read -r f; do
@@ -20,6 +20,8 @@ fi
 printf 'def Xform "A" (variants = {string v = "x"}\n prepend variantSets = "v")\n{\n variantSet "v" = { "x" { double a = 1 } }\n}\n' \
   > "$build/corpus/usda/seed1"
 find scenes tests/data -name '*.yaml' -exec cp {} "$build/corpus/scene/" \;
+# Image headers: the project's own small PNG and JPEG files.
+find scenes tests/data \( -name '*.png' -o -name '*.jpg' -o -name '*.jpeg' \) -size -200k -exec cp {} "$build/corpus/image/" \;
 cp tests/data/fuzz_regressions/* "$build/corpus/scene/"
 printf '%s\n' 'render.resolution=[640,480]' '/World/Box.size=3' '/World/Box.xformOp:translate=[1,2,3]' \
   '/World/Box.exposedVar:locationRandomizer:interval=4' 'capture.frames=12' 'physics.require_settled=true' \
@@ -44,13 +46,14 @@ fi
 # limit a test of each input rather than of the run's history.
 export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}allocator_release_to_os_interval_ms=100:quarantine_size_mb=32
 status=0
-for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz; do
+for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header; do
   corpus=$build/corpus/scene
   [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
   [[ $harness == fuzz_usda ]] && corpus=$build/corpus/usda
   max_len=65536
   [[ $harness == fuzz_crate ]] && corpus=$build/corpus/crate max_len=300000
   [[ $harness == fuzz_usdz ]] && corpus=$build/corpus/usdz max_len=300000
+  [[ $harness == fuzz_image_header ]] && corpus=$build/corpus/image max_len=200000
   echo "fuzz: $harness for ${seconds}s"
   log=$build/artifacts/$harness.log
   if "$build/tests/fuzz/$harness" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=$max_len \
