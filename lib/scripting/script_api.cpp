@@ -481,6 +481,11 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
                                const auto& m = h.prim().material();
                                return m ? py::object(py::str(m->path)) : py::object(py::none());
                              })
+      .def_property_readonly("material_strength",
+                             [](const PrimHandle& h) -> py::object {
+                               const auto& m = h.prim().material();
+                               return m ? py::object(py::str(m->strength)) : py::object(py::none());
+                             })
       .def("bind_material",
            [](PrimHandle& h, const std::string& material, const std::string& strength) {
              Prim& p = h.prim();

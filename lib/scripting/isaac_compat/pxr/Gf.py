@@ -15,21 +15,24 @@ def _f32(x):
     return _F32.unpack(_F32.pack(x))[0]
 
 
-class _Vec3(_Located):
+class _Vec(_Located):
+    """N components, float32-rounded when _round (the f types)."""
     __slots__ = ("_v",)
     _round = None
+    _N = 3
 
     def __init__(self, *args):
+        n = self._N
         if not args:
-            v = [0.0, 0.0, 0.0]
+            v = [0.0] * n
         elif len(args) == 1 and not isinstance(args[0], (int, float)):
             v = [float(x) for x in args[0]]
         elif len(args) == 1:
-            v = [float(args[0])] * 3
+            v = [float(args[0])] * n
         else:
             v = [float(x) for x in args]
-        if len(v) != 3:
-            raise TypeError(f"{type(self).__name__} takes 3 components, found {len(v)}")
+        if len(v) != n:
+            raise TypeError(f"{type(self).__name__} takes {n} components, found {len(v)}")
         if self._round:
             v = [_f32(x) for x in v]
         self._v = v
@@ -47,10 +50,28 @@ class _Vec3(_Located):
         self._v[i] = _f32(x) if self._round else float(x)
 
     def __len__(self):
-        return 3
+        return self._N
 
     def __iter__(self):
         return iter(self._v)
+
+    def __eq__(self, o):
+        try:
+            return len(o) == self._N and all(a == b for a, b in zip(self._v, o))
+        except TypeError:
+            return False
+
+    def __ne__(self, o):
+        return not self.__eq__(o)
+
+    __hash__ = None
+
+    def __repr__(self):
+        return f"Gf.{type(self).__name__}({', '.join(repr(x) for x in self._v)})"
+
+
+class _Vec3(_Vec):
+    __slots__ = ()
 
     def __add__(self, o):
         a, b = self._v, o
@@ -81,20 +102,6 @@ class _Vec3(_Located):
 
     def __truediv__(self, o):
         return self._make([x / o for x in self._v])
-
-    def __eq__(self, o):
-        try:
-            return len(o) == 3 and all(a == b for a, b in zip(self._v, o))
-        except TypeError:
-            return False
-
-    def __ne__(self, o):
-        return not self.__eq__(o)
-
-    __hash__ = None
-
-    def __repr__(self):
-        return f"Gf.{type(self).__name__}({self._v[0]!r}, {self._v[1]!r}, {self._v[2]!r})"
 
     def GetDot(self, o):
         return self._v[0] * o[0] + self._v[1] * o[1] + self._v[2] * o[2]
@@ -136,6 +143,21 @@ class Vec3d(_Vec3):
 
 
 class Vec3f(_Vec3):
+    __slots__ = ()
+    _round = True
+
+
+class _Vec2(_Vec):
+    """Two components (ranges such as a light's intensity (min, max))."""
+    __slots__ = ()
+    _N = 2
+
+
+class Vec2d(_Vec2):
+    __slots__ = ()
+
+
+class Vec2f(_Vec2):
     __slots__ = ()
     _round = True
 

@@ -22,6 +22,10 @@ def _to_gf(value, native_type):
         return Gf.Vec3d._make(list(value))
     if native_type in _VEC3F:
         return Gf.Vec3f(value)
+    if native_type == "float2":
+        return Gf.Vec2f(value)
+    if native_type == "double2":
+        return Gf.Vec2d(value)
     if native_type == "quatd":
         return Gf.Quatd(*value)
     if native_type == "quatf":
@@ -37,7 +41,7 @@ def _to_gf(value, native_type):
 
 def _to_native(value):
     """A Gf/Sdf value as what the native API takes (tuples, rows, strings)."""
-    if isinstance(value, Gf._Vec3):
+    if isinstance(value, Gf._Vec):
         return tuple(value._v)
     if isinstance(value, Gf._Quat):
         return (value.GetReal(),) + tuple(value.GetImaginary())
@@ -194,7 +198,10 @@ class Prim(_Located):
         return self._h is not None and test(self._h)
 
     def HasAPI(self, schema, *args):
-        return False
+        """The applied schemas sdgbehave's prims carry (UsdLux.LightAPI on lights,
+        UsdShade.MaterialBindingAPI); any other answers False."""
+        test = getattr(schema, "_sdg_has_api", None)
+        return bool(self._h is not None and test is not None and test(self._h))
 
     def IsActive(self):
         return True
@@ -252,7 +259,18 @@ class Stage(_Located):
         return Prim(self._s.define_prim(path, type_name or "Xform"), self)
 
     def RemovePrim(self, path):
-        self._s.remove_prim(str(path))
+        """Removes a prim this behavior created. An empty Scope another
+        behavior created is left to that behavior (False), as sdgbehave removes
+        every behavior's own prims on stop anyway."""
+        handle = self._s.get_prim(str(path))
+        if handle is None:
+            return False
+        try:
+            self._s.remove_prim(str(path))
+        except ValueError as e:
+            if handle.type_name == "Scope" and "was not created by" in str(e):
+                return False
+            raise
         return True
 
     def Traverse(self, *args):
