@@ -3,9 +3,11 @@
 <repo>/../shared/isaac-behaviors) run unchanged: the pre-roll publishes the custom-event behavior's `.in`
 event on sdgbehave's bus and waits for the `.out` reply the script dispatches through
 carb.eventdispatcher, matched on its payload (a reply that does not match fails the run, so the replies
-are really on the bus); the example behavior's hooks run every frame (scripts print to stderr).
+are really on the bus); the example behavior's hooks run every frame (scripts print to stderr). volume_stack_randomizer.py, whose
+PhysX calls the layer does not map yet, fails its setup with the layer's located message (the missing
+name, the Isaac file:line that used it, the docs page), exit 1.
 
-usage: check_isaac_examples.py SDGBEHAVE SCENE SHARED_DIR"""
+usage: check_isaac_examples.py SDGBEHAVE SCENE_DIR SHARED_DIR"""
 import os
 import subprocess
 import sys
@@ -20,7 +22,8 @@ def run(binary, scene, out):
 
 
 def main():
-    binary, scene, shared = sys.argv[1:4]
+    binary, scenes, shared = sys.argv[1:4]
+    scene = os.path.join(scenes, "examples.yaml")
     if not os.path.isdir(os.path.join(shared, "isaacsim", "replicator", "behavior")):
         print(f"skipped: Isaac Sim's behavior scripts are not at {shared}")
         return 77
@@ -46,6 +49,11 @@ def main():
             os.remove(wrong)
         check(p.returncode != 0 and "no reply on isaacsim.replicator.behavior.exampleCustomEventBehavior.out" in p.stderr,
               f"a reply the pre-roll does not wait for still passed (exit {p.returncode}): {p.stderr[-400:]}")
+        p = run(binary, os.path.join(scenes, "volume_stack.yaml"), os.path.join(tmp, "c"))
+        check(p.returncode == 1 and "pxr.UsdPhysics.MaterialAPI is not provided by sdgbehave's Isaac Sim layer "
+              "(used at " in p.stderr and "utils/scene_utils.py:" in p.stderr and "docs/isaac-scripts.md" in p.stderr,
+              f"volume_stack.yaml: expected the located 'not provided' error, exit 1; exit {p.returncode}: "
+              f"{p.stderr[-500:]}")
     return finish("Isaac's example behaviors: the custom-event replies reach the bus; the example behavior runs")
 
 

@@ -153,6 +153,18 @@ class _Vec2(_Vec):
     _N = 2
 
 
+class Vec2i(_Vec2):
+    """Integer pairs (a count range such as the volume stack's assets:numRange)."""
+    __slots__ = ()
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self._v = [int(x) for x in self._v]
+
+    def __setitem__(self, i, x):
+        self._v[i] = int(x)
+
+
 class Vec2d(_Vec2):
     __slots__ = ()
 

@@ -26,6 +26,8 @@ def _to_gf(value, native_type):
         return Gf.Vec2f(value)
     if native_type == "double2":
         return Gf.Vec2d(value)
+    if native_type == "int2":
+        return Gf.Vec2i(value)
     if native_type == "quatd":
         return Gf.Quatd(*value)
     if native_type == "quatf":

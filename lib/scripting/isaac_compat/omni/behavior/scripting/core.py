@@ -18,6 +18,11 @@ import _isaac_compat
 import sdgbehave as _sdgbehave
 from pxr import Sdf, Usd
 
+# The loop exists before any script code runs, so that asyncio.ensure_future
+# in a hook or an event callback schedules on it (not on a loop asyncio would
+# make up, which nothing runs).
+_isaac_compat.loop()
+
 _HOOKS = ("on_init", "on_play", "on_pause", "on_stop", "on_update", "on_destroy")
 
 
