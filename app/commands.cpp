@@ -40,6 +40,12 @@ void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
                  "defaults of textureRandomizer and volumeStackRandomizer, resolve below it. Default: "
                  "$SDGBEHAVE_ISAAC_ASSETS, then the scene's isaac_assets:")
       ->type_name("DIR");
+  cmd.add_option("--isaac-scripts", args.isaacScripts,
+                 "Isaac's six behavior scripts a prim lists in omni:scripting:scripts: auto (the file when it exists, "
+                 "else the built-in of its name), builtin (always the built-in) or script (always the file); "
+                 "overrides run.isaac_scripts")
+      ->check(CLI::IsMember({"auto", "builtin", "script"}))
+      ->type_name("CHOICE");
 }
 
 void addHookTimeoutArg(CLI::App& cmd, SceneArgs& args) {
@@ -57,7 +63,8 @@ SceneRequest sceneRequest(const SceneArgs& args) {
                       .scripts = args.scripts,
                       .assetRoots = args.assetRoots,
                       .isaacAssets = args.isaacAssets,
-                      .hookTimeout = args.hookTimeout};
+                      .hookTimeout = args.hookTimeout,
+                      .isaacScripts = args.isaacScripts};
 }
 
 void addImageArgs(CLI::App& cmd, ImageArgs& args) {

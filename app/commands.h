@@ -24,6 +24,7 @@ struct SceneArgs {
   std::vector<std::string> assetRoots;
   std::string isaacAssets;
   std::optional<double> hookTimeout;  // --hook-timeout (run only)
+  std::string isaacScripts;           // --isaac-scripts ("" = run.isaac_scripts)
 };
 // What the library needs to load the scene the arguments name.
 SceneRequest sceneRequest(const SceneArgs& args);

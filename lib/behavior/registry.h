@@ -23,6 +23,10 @@ class BehaviorRegistry {
   // ...) takes the built-in's place in this registry; otherwise as add().
   void replaceBuiltin(BehaviorSpec spec, BehaviorFactory factory, std::string source);
   const BehaviorCatalog& catalog() const { return catalog_; }
+  // A file prims list in omni:scripting:scripts stands for `behaviors`.
+  void attachScriptFile(const std::string& path, std::vector<std::string> behaviors) {
+    catalog_.attachedScripts[path] = std::move(behaviors);
+  }
   std::unique_ptr<Behavior> create(std::string_view name) const;
   const std::string& sourceOf(std::string_view name) const;
 

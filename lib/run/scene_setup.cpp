@@ -8,8 +8,10 @@
 #include "builtin_behaviors/builtin_behaviors.h"
 #include "scripting/hook_watchdog.h"
 #include "scripting/script_loader.h"
+#include "core/log.h"
 #include "core/text.h"
 #include "core/file_io.h"
+#include "scene_io/attached_scripts.h"
 #include "scene_io/references.h"
 #include "scene_io/scene_loader.h"
 #include "scene_io/overrides.h"
@@ -136,6 +138,47 @@ std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const De
   return p.string();
 }
 
+// omni:scripting:scripts (scene_io/attached_scripts.h): --isaac-scripts,
+// else the scene's run.isaac_scripts, else auto.
+IsaacScriptChoice isaacScriptChoice(const SceneRequest& request, std::optional<IsaacScriptChoice> setting) {
+  if (request.isaacScripts.empty()) return setting.value_or(IsaacScriptChoice::Auto);
+  if (auto choice = parseIsaacScriptChoice(request.isaacScripts)) return *choice;
+  throw SceneError(SourceLoc{"--isaac-scripts", 0, 0}, "expected one of " + std::string(kIsaacScriptChoices) +
+                                                           ", found " + text::quote(request.isaacScripts));
+}
+
+// Loads the behavior scripts prims list in omni:scripting:scripts and
+// records what each file stands for; says once per run which built-ins
+// stand in for missing Isaac files.
+class ScriptAttacher {
+ public:
+  ScriptAttacher(BehaviorRegistry& registry, IsaacScriptChoice choice) : registry_(registry), choice_(choice) {}
+
+  // The behaviors `path` stands for; SceneError at `where` when it cannot.
+  std::vector<std::string> attach(const std::string& path, const SourceLoc& where) {
+    if (auto known = registry_.catalog().attachedScripts.find(path); known != registry_.catalog().attachedScripts.end())
+      return known->second;
+    AttachedScript a = resolveAttachedScript(path, choice_, [this](const std::string& file, const SourceLoc& loc) {
+      scriptFiles_.push_back(file);
+      return scripting::loadScript(registry_, file, loc);
+    }, where);
+    if (!a.error.empty()) throw SceneError(where, "omni:scripting:scripts: " + a.error);
+    if (a.builtinStandIn) missing_.push_back(path);
+    registry_.attachScriptFile(path, a.behaviors);
+    return a.behaviors;
+  }
+  void sayNote() const {
+    if (!missing_.empty()) log::info(builtinStandInNote(missing_));
+  }
+  const std::vector<std::string>& scriptFiles() const { return scriptFiles_; }
+
+ private:
+  BehaviorRegistry& registry_;
+  IsaacScriptChoice choice_;
+  std::vector<std::string> scriptFiles_;  // files loaded (not the built-ins standing in)
+  std::vector<std::string> missing_;
+};
+
 }  // namespace
 
 bool isUsdStagePath(const std::string& path) {
@@ -156,7 +199,15 @@ LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   options.registerScript = [&](const std::string& script) {
     scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
   };
+  // Scripts the prims list load as the import meets them (before their
+  // prim's exposedVar values are read against the script's variables).
+  ScriptAttacher attacher(registry, isaacScriptChoice(request, std::nullopt));
+  options.attachScript = [&attacher](const std::string& path, const SourceLoc& where) {
+    return attacher.attach(path, where);
+  };
   Scene scene = importUsdScene(request.scenePath, registry.catalog(), options, report);
+  for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
+  attacher.sayNote();
   Diagnostics diag;
   applyOverrides(request.overrides, registry.catalog(), scene, diag);
   if (!diag.hasErrors()) validateScene(scene, registry.catalog(), diag);
@@ -169,6 +220,7 @@ LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   diag.throwIfErrors();
   std::vector<std::string> scriptFiles = request.scripts;
   for (const std::string& s : report.scriptFiles) scriptFiles.push_back(s);
+  for (const std::string& s : attacher.scriptFiles()) scriptFiles.push_back(s);
   for (std::string& file : scriptFiles) file = std::filesystem::absolute(file).lexically_normal().string();
   // Every layer read is part of the run's identity; package entries by their package.
   std::vector<std::string> mounted;
@@ -204,6 +256,11 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
     registry.loadPlugin(pluginFiles.back(), plugin.loc);
   }
   for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
+  // Script files prims list in omni:scripting:scripts, as Isaac attaches them.
+  ScriptAttacher attacher(registry, isaacScriptChoice(request, isaacScriptSetting(doc.root)));
+  for (const ListedScript& listed : listedScriptFiles(doc.root)) attacher.attach(listed.path, listed.loc);
+  for (const std::string& file : attacher.scriptFiles()) scriptFiles.push_back(file);
+  attacher.sayNote();
   // Smart assets: their scripts register before any prim is read, so that
   // the scene can attach and override their behaviors.
   AssetLibrary assetLibrary(buildAssetScene, request.assetTexts);

@@ -25,6 +25,7 @@ struct SceneRequest {
   std::vector<std::string> assetRoots = {};  // --asset-root
   std::string isaacAssets = {};              // --isaac-assets ("" = SDGBEHAVE_ISAAC_ASSETS, then the scene's)
   std::optional<double> hookTimeout = {};    // --hook-timeout (unset: the scene's run.hook_timeout)
+  std::string isaacScripts = {};             // --isaac-scripts auto|builtin|script ("": run.isaac_scripts)
   // The scene's text when it is not read from scenePath (the studio's edits
   // not saved yet); locations still name scenePath.
   std::optional<std::string> sceneText = {};

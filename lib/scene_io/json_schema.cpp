@@ -171,6 +171,30 @@ Json primSchema(const PrimTypeInfo& info) {
   return s;
 }
 
+// Isaac's way of attaching scripts on a prim: `omni:scripting:scripts`
+// (files) and each behavior's variables as `exposedVar:<ns>:<name>` keys
+// (one definition per variable, referenced from every prim type).
+void addScriptKeys(Json& primDef, const BehaviorCatalog& catalog) {
+  Json& props = primDef["properties"];
+  props["omni:scripting:scripts"] = {
+      {"description", "Behavior script files, as Isaac Sim attaches them (docs/isaac-scripts.md); their variables "
+                      "are this prim's exposedVar:<behavior>:<name> keys."},
+      {"type", "array"},
+      {"items", {{"type", "string"}, {"minLength", 1}}}};
+  for (const BehaviorSpec& spec : catalog.specs)
+    for (const AttributeSpec& var : spec.variables)
+      if (!var.locked) {
+        const std::string name = exposedAttributeName(spec.name, var.name);
+        props[name] = {{"$ref", "#/definitions/" + name}};
+      }
+}
+
+void addExposedVariableDefs(Json& defs, const BehaviorCatalog& catalog) {
+  for (const BehaviorSpec& spec : catalog.specs)
+    for (const AttributeSpec& var : spec.variables)
+      if (!var.locked) defs[exposedAttributeName(spec.name, var.name)] = attributeSchema(var);
+}
+
 }  // namespace
 
 std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
@@ -179,6 +203,7 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
   for (const PrimTypeInfo& info : allPrimTypes()) {
     std::string name = "prim" + std::string(info.name);
     defs[name] = primSchema(info);
+    addScriptKeys(defs[name], catalog);
     primVariants.push_back({{"$ref", "#/definitions/" + name}});
   }
   // A prim that mounts a smart asset: its type (and so which attributes it
@@ -201,6 +226,8 @@ std::string sceneJsonSchema(const BehaviorCatalog& catalog) {
                       {"behaviors", {{"$ref", "#/definitions/behaviors"}}},
                       {"attributes", {{"$ref", "#/definitions/attributes"}}},
                       {"metadata", {{"type", "object"}, {"additionalProperties", {{"type", "string"}}}}}}}};
+  addScriptKeys(defs["primReference"], catalog);
+  addExposedVariableDefs(defs, catalog);
   primVariants.push_back({{"$ref", "#/definitions/primReference"}});
   defs["prim"] = {{"oneOf", primVariants}};
   defs["writer"] = writerSchema();

@@ -1,9 +1,11 @@
 #include "scene_io/prim_reader.h"
 
 #include <algorithm>
+#include <functional>
 #include <unordered_map>
 
 #include "core/text.h"
+#include "scene_io/attached_scripts.h"
 #include "scene_io/map_reader.h"
 #include "scene_io/references.h"
 #include "scene_io/usd_import.h"
@@ -123,6 +125,29 @@ void readCustomAttributes(const RawNode& node, const std::string& what, Prim& pr
   }
 }
 
+// Attaches `spec` to `prim` with the values `valueOf(variable)` gives
+// (nullptr: not given, the default stays).
+void attachBehaviorWithValues(const BehaviorSpec& spec, Prim& prim,
+                              const std::function<const RawNode*(const std::string&)>& valueOf, Diagnostics& diag) {
+  for (const AttributeSpec& var : spec.variables) {
+    const RawNode* valueNode = valueOf(var.name);
+    if (!valueNode) continue;
+    std::string attrName = exposedAttributeName(spec.name, var.name);
+    if (var.locked) {
+      diag.error(valueNode->loc, prim.path() + "." + attrName + ": is locked (informational only); remove it");
+      continue;
+    }
+    auto v = readValue(*valueNode, var, prim.path() + "." + attrName, diag);
+    if (!v) continue;
+    Attribute& a = prim.setAttribute(attrName, *v, true);
+    a.doc = var.doc;
+    a.loc = valueNode->loc;
+  }
+  createExposedVariables(prim, spec);
+  if (std::find(prim.behaviors().begin(), prim.behaviors().end(), spec.name) == prim.behaviors().end())
+    prim.behaviors().push_back(spec.name);
+}
+
 void readBehaviors(const RawNode& node, const std::string& what, const BehaviorCatalog& catalog, Prim& prim,
                    Diagnostics& diag) {
   MapReader map(node, what, diag);
@@ -157,24 +182,69 @@ void readBehaviors(const RawNode& node, const std::string& what, const BehaviorC
         continue;
       }
     }
-    for (const AttributeSpec& var : spec->variables) {
-      const RawNode* valueNode = vars.get(var.name);
-      if (!valueNode) continue;
-      std::string attrName = exposedAttributeName(spec->name, var.name);
-      if (var.locked) {
-        diag.error(valueNode->loc, prim.path() + "." + attrName + ": is locked (informational only); remove it");
-        continue;
-      }
-      auto v = readValue(*valueNode, var, prim.path() + "." + attrName, diag);
-      if (!v) continue;
-      Attribute& a = prim.setAttribute(attrName, *v, true);
-      a.doc = var.doc;
-      a.loc = valueNode->loc;
-    }
+    attachBehaviorWithValues(*spec, prim, [&vars](const std::string& name) { return vars.get(name); }, diag);
     vars.finish();
-    createExposedVariables(prim, *spec);
-    if (std::find(prim.behaviors().begin(), prim.behaviors().end(), spec->name) == prim.behaviors().end())
-      prim.behaviors().push_back(spec->name);
+  }
+}
+
+// `omni:scripting:scripts: [files]` on a YAML prim, as on a USD prim: each
+// file's behaviors (attached_scripts.h; the loader resolved every listed
+// file before the prims are read) with their `exposedVar:<ns>:<name>` keys
+// of the same entry as values. Returns the namespaces attached.
+std::vector<std::string> readScriptList(const RawNode& entry, const RawNode& list, const std::string& what,
+                                        const BehaviorCatalog& catalog, Prim& prim, Diagnostics& diag) {
+  std::vector<std::string> attached;
+  if (!list.isSequence()) {
+    diag.error(list.loc, what + ": expected a list of behavior script files, found " + list.describe());
+    return attached;
+  }
+  for (const RawNode& item : list.items) {
+    if (!item.isScalar() || item.scalar.empty()) {
+      diag.error(item.loc, what + ": expected a script file path, found " + item.describe());
+      continue;
+    }
+    auto found = catalog.attachedScripts.find(resolveListedScript(item.scalar, item.loc));
+    if (found == catalog.attachedScripts.end()) {
+      diag.error(item.loc, what + ": " + text::quote(item.scalar) +
+                               " was not loaded: omni:scripting:scripts is read on the scene's own prims (in a "
+                               "referenced asset, list the script under the asset's scripts: and attach it with "
+                               "behaviors:)");
+      continue;
+    }
+    for (const std::string& name : found->second) {
+      const BehaviorSpec* spec = catalog.find(name);
+      if (!spec) continue;
+      attachBehaviorWithValues(*spec, prim, [&entry, &name](const std::string& var) {
+        return entry.find(exposedAttributeName(name, var));
+      }, diag);
+      attached.push_back(name);
+    }
+  }
+  return attached;
+}
+
+// The entry's `exposedVar:<ns>:<name>` keys: values of a behavior its
+// omni:scripting:scripts attached (read there); anything else is an error.
+void checkExposedKeys(const RawNode& entry, const std::vector<std::string>& attached, const BehaviorCatalog& catalog,
+                      Prim& prim, MapReader& map, Diagnostics& diag) {
+  for (const RawEntry& e : entry.entries) {
+    const std::string& key = e.key.scalar;
+    if (!key.starts_with("exposedVar:")) continue;
+    map.allow(key);
+    const std::string rest = key.substr(std::string_view("exposedVar:").size());
+    const std::string ns = rest.substr(0, rest.find(':'));
+    const std::string var = rest.find(':') == std::string::npos ? "" : rest.substr(rest.find(':') + 1);
+    const BehaviorSpec* spec = catalog.find(ns);
+    if (std::find(attached.begin(), attached.end(), ns) == attached.end() || !spec) {
+      diag.error(e.key.loc, prim.path() + "." + key + ": no script in this prim's omni:scripting:scripts defines " +
+                                "the behavior " + text::quote(ns) + " (with behaviors:, give the variable there)");
+      continue;
+    }
+    if (!spec->findVariable(var)) {
+      std::vector<std::string> names = spec->variableNames();
+      diag.error(e.key.loc, prim.path() + "." + key + ": " + ns + " has no variable " + text::quote(var) +
+                                "; its variables: " + text::join(names, ", ") + text::didYouMean(var, names));
+    }
   }
 }
 
@@ -200,6 +270,7 @@ void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, 
   if (!map.ok() || entry.isNull()) return;
   const PrimTypeInfo& info = prim.typeInfo();
   map.allow("type");
+  std::vector<std::string> scripted;  // behaviors omni:scripting:scripts attached
 
   for (const auto& [key, value] : entry.entries) {
     const std::string& name = key.scalar;
@@ -212,6 +283,7 @@ void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, 
       else if (name == "behaviors") readBehaviors(value, what, catalog, prim, diag);
       else if (name == "attributes") readCustomAttributes(value, what, prim, diag);
       else if (name == "metadata") readMetadata(value, what, prim, diag);
+      else if (name == kScriptsKey) scripted = readScriptList(entry, value, what, catalog, prim, diag);
       continue;
     }
     if (const AttributeSpec* spec = findSchemaAttribute(prim.type(), name)) {
@@ -248,6 +320,7 @@ void fillPrim(const PrimDecl& decl, const BehaviorCatalog& catalog, Prim& prim, 
       continue;
     }
   }
+  checkExposedKeys(entry, scripted, catalog, prim, map, diag);
   // Unknown keys: suggest among everything this prim type accepts.
   for (const AttributeSpec& spec : info.attributes) map.allow(spec.name);
   if (info.xformable)

@@ -8,8 +8,11 @@
 namespace sdg {
 
 // Keys of a prim entry besides attributes and xform ops.
-inline constexpr std::string_view kPrimStructuralKeys[] = {"type",       "semantics", "material", "behaviors",
-                                                           "attributes", "metadata",  "reference"};
+// `omni:scripting:scripts` lists behavior script files as Isaac Sim attaches
+// them (scene_io/attached_scripts.h).
+inline constexpr std::string_view kScriptsKey = "omni:scripting:scripts";
+inline constexpr std::string_view kPrimStructuralKeys[] = {"type",     "semantics", "material",  "behaviors", "attributes",
+                                                           "metadata", "reference", kScriptsKey};
 
 class AssetLibrary;
 // Where `reference:` entries are mounted from: the load's asset library and

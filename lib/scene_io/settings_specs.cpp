@@ -91,6 +91,11 @@ const std::vector<AttributeSpec>& runSpecs() {
       atLeast(0, option("hook_timeout", Value::makeDouble(60.0),
                         "Seconds one call into a behavior script (a hook or an event callback) may take before the run "
                         "stops with an error naming it; 0 means no limit (--hook-timeout overrides).")),
+      tokens(option("isaac_scripts", Value::makeToken("auto"),
+                    "Isaac's six behavior scripts listed in omni:scripting:scripts: auto runs the file when it "
+                    "exists, else the built-in of its name; builtin always the built-in; script always the file "
+                    "(--isaac-scripts overrides; docs/isaac-scripts.md)."),
+             {"auto", "builtin", "script"}),
   };
   return specs;
 }

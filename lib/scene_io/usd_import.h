@@ -57,6 +57,10 @@ struct UsdImportOptions {
   // of the same name; other .py files listed in omni:scripting:scripts are
   // loaded as behavior scripts (the loader registers them before import).
   bool builtinsForIsaacScripts = true;
+  // When set, it decides what each listed file stands for (the run's
+  // loader: scene_io/attached_scripts.h), loading scripts as they are met;
+  // the two rules above are then not used.
+  std::function<std::vector<std::string>(const std::string& path, const SourceLoc& where)> attachScript;
 };
 
 // What importing found besides the stage: script files the prims list

@@ -287,6 +287,11 @@ void importBehaviors(const usd::ComposedPrim& prim, Prim& stagePrim,
   const std::vector<std::string>& paths =
       scripts->resolvedAssets.size() == scripts->value.strings.size() ? scripts->resolvedAssets : scripts->value.strings;
   for (const std::string& path : paths) {
+    if (options.attachScript) {
+      for (const std::string& name : options.attachScript(path, scripts->loc))
+        if (const BehaviorSpec* spec = catalog.find(name)) attachBehavior(prim, stagePrim, *spec, mapPath, diag);
+      continue;
+    }
     ScriptBehavior b = behaviorForScript(path, catalog, options, report);
     if (!b.spec) {
       diag.error(scripts->loc, prim.path + "." + scripts->name + ": " + b.error);

@@ -219,9 +219,22 @@ Payload payloadFromPython(const py::dict& d, const std::string& what) {
 
 
 // The op named `name` ("xformOp:translate", ...) on the prim, or null.
-XformOp* findOp(Prim& prim, const std::string& name) {
+// Whether `op` is the op attribute `name` ("xformOp:<kind>[:<suffix>]"),
+// compared in place: scripts set ops per prim per frame.
+bool isOpNamed(const XformOp& op, std::string_view name) {
+  constexpr std::string_view kPrefix = "xformOp:";
+  const std::string_view kind = xformOpKindName(op.kind);
+  if (!name.starts_with(kPrefix)) return false;
+  name.remove_prefix(kPrefix.size());
+  if (!name.starts_with(kind)) return false;
+  name.remove_prefix(kind.size());
+  if (op.suffix.empty()) return name.empty();
+  return name.size() == op.suffix.size() + 1 && name[0] == ':' && name.substr(1) == op.suffix;
+}
+
+XformOp* findOp(Prim& prim, std::string_view name) {
   for (XformOp& op : prim.xformOps())
-    if (op.attributeName() == name) return &op;
+    if (isOpNamed(op, name)) return &op;
   return nullptr;
 }
 
@@ -342,13 +355,14 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
            },
            py::arg("name"), "The USD type name of an attribute or xform op ('double3', 'quatd', ...), or None.")
       .def("set_xform_op",
-           [](PrimHandle& h, const std::string& name, py::handle value) {
+           [](PrimHandle& h, std::string_view name, py::handle value) {
              Prim& p = h.prim();
              XformOp* op = findOp(p, name);
-             if (!op) throw py::value_error(h.what(name) + ": the prim has no such xform op");
-             Value v = fromPython(value, op->value.type(), h.what(name));
+             if (!op) throw py::value_error(h.what(std::string(name)) + ": the prim has no such xform op");
+             Value v = fromPython(value, op->value.type(), h.what(std::string(name)));
+             // The journal copies the ops aside; `op` still points into the prim's.
              if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
-             findOp(p, name)->value = std::move(v);
+             op->value = std::move(v);
            },
            py::arg("name"), py::arg("value"), "Writes one xform op's value, in the op's own type.")
       .def("add_xform_op",
@@ -375,6 +389,12 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
            py::arg("name"), "Removes an authored attribute (restored on stop or destroy); False if absent.")
       .def("set_attribute", &setAttribute, py::arg("name"), py::arg("value"), py::arg("type") = py::none(),
            "Writes an attribute, checked against its type; type= creates a custom attribute.")
+      .def_property_readonly("xform_op_names",
+                             [](const PrimHandle& h) {
+                               py::list names;
+                               for (const XformOp& op : h.prim().xformOps()) names.append(op.attributeName());
+                               return names;
+                             })
       .def_property_readonly("xform_ops",
                              [](const PrimHandle& h) {
                                py::list ops;
@@ -480,6 +500,11 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
                              [](const PrimHandle& h) -> py::object {
                                const auto& m = h.prim().material();
                                return m ? py::object(py::str(m->path)) : py::object(py::none());
+                             })
+      .def_property_readonly("material_strength",
+                             [](const PrimHandle& h) -> py::object {
+                               const auto& m = h.prim().material();
+                               return m ? py::object(py::str(m->strength)) : py::object(py::none());
                              })
       .def("bind_material",
            [](PrimHandle& h, const std::string& material, const std::string& strength) {

@@ -273,14 +273,16 @@ void reloadScript(const std::string& path) {
   loadedScripts()[canonical] = std::move(fresh);
 }
 
-void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where) {
+std::vector<std::string> loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where) {
   checkScriptFile(path, where);
   std::error_code ec;
   const std::string canonical = fs::canonical(path, ec).string();
   auto it = loadedScripts().find(canonical);
   if (it == loadedScripts().end()) it = loadedScripts().emplace(canonical, runScript(path, canonical)).first;
   const LoadedScript& script = it->second;
+  std::vector<std::string> names;
   for (const ScriptedBehavior& b : script.behaviors) {
+    names.push_back(b.spec.name);
     if (b.isaac && registry.catalog().find(b.spec.name) && registry.sourceOf(b.spec.name) == "built-in") {
       log::info(b.spec.name + ": the Isaac Sim script " + script.source + " stands in for the built-in behavior");
       py::object cls = b.cls;
@@ -305,6 +307,7 @@ void loadScript(BehaviorRegistry& registry, const std::string& path, const Sourc
     registry.add(b.spec, [cls, rngStream, source] { return std::make_unique<ScriptBehavior>(cls, rngStream, source); },
                  script.source);
   }
+  return names;
 }
 
 }  // namespace sdg::scripting

@@ -4,6 +4,7 @@
 // own BEHAVIOR_NS becomes a behavior whose spec comes from its
 // VARIABLES_TO_EXPOSE, registered beside the built-ins and plugins.
 #include <string>
+#include <vector>
 
 #include "behavior/registry.h"
 #include "core/source_loc.h"
@@ -15,8 +16,8 @@ namespace sdg::scripting {
 // exception in the top-level code, a bad BEHAVIOR_NS or VARIABLES_TO_EXPOSE
 // entry, or a namespace another source already uses is a SceneError at the
 // script's file:line. Loading the same file into the same registry again
-// does nothing.
-void loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where);
+// does nothing. Returns the behaviors (namespaces) the file defines.
+std::vector<std::string> loadScript(BehaviorRegistry& registry, const std::string& path, const SourceLoc& where);
 
 // A SceneError at `where` unless `path` is an existing regular file ending
 // in .py: a missing file, a folder and (say) a scene each say so, instead of

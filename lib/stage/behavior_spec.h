@@ -3,6 +3,7 @@
 // documentation. The behavior registry produces these; the loader, the YAML
 // writer, `describe` and the JSON Schema all read them (one source of truth).
 #include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,9 @@ struct BehaviorSpec {
 
 struct BehaviorCatalog {
   std::vector<BehaviorSpec> specs;
+  // Script files prims list in omni:scripting:scripts (absolute) -> the
+  // behaviors each stands for (its classes, or the built-in standing in).
+  std::map<std::string, std::vector<std::string>> attachedScripts;
   const BehaviorSpec* find(std::string_view name) const;
   std::vector<std::string> names() const;
 };

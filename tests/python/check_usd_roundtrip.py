@@ -51,7 +51,10 @@ def same_line(a, b):
     """Equal, or both long strings inspect cut short ('...') that agree as far as both go."""
     if a == b:
         return True
+    # A cut string may end inside an absolute path whose prefix could not be
+    # stripped ('...,/wor...'): compare up to the last whole list item.
     cut = [x[:-4] for x in (a, b) if x.endswith("...'")]
+    cut = [x[: x.rfind(",") + 1] if "," in x else x for x in cut]
     if not cut:
         return False
     n = min(len(x) for x in cut)

@@ -53,6 +53,7 @@ class _Dispatcher:
             _isaac_compat.current = behavior
             try:
                 on_event(IEvent(name, payload))
+                _isaac_compat.run_ready()  # coroutines the callback started run now (and raise here)
             finally:
                 _isaac_compat.current = previous
 

@@ -25,3 +25,13 @@ def get_context(name=""):
 
 def get_stage_next_free_path(stage, path, prepend_default_prim=False):
     return stage._s.next_free_path(str(path))
+
+
+def get_shader_from_material(material, get_prim=False):
+    """The material's shader: sdgbehave's Material prim holds its shader's
+    inputs itself, so the shader is the Material prim (pxr/UsdShade.py)."""
+    from pxr import Usd, UsdShade
+    prim = material.GetPrim() if isinstance(material, UsdShade.Material) else material
+    if not isinstance(prim, Usd.Prim) or not prim or prim.GetTypeName() != "Material":
+        return None
+    return prim if get_prim else UsdShade.Shader(prim)

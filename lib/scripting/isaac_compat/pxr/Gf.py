@@ -15,76 +15,85 @@ def _f32(x):
     return _F32.unpack(_F32.pack(x))[0]
 
 
-class _Vec3(_Located):
-    __slots__ = ("_v",)
+class _Vec(list, _Located):
+    """N components, float32-rounded when _round (the f types). A list
+    underneath: indexing and iteration run at C speed (scripts index vectors
+    per prim per frame); `_v` is the vector itself."""
+    __slots__ = ()
     _round = None
+    _N = 3
 
     def __init__(self, *args):
+        n = self._N
+        if len(args) == n and not self._round:  # Vec3d(x, y, z): the common case, per prim per frame
+            list.__init__(self, [float(x) for x in args])
+            return
         if not args:
-            v = [0.0, 0.0, 0.0]
+            v = [0.0] * n
         elif len(args) == 1 and not isinstance(args[0], (int, float)):
             v = [float(x) for x in args[0]]
         elif len(args) == 1:
-            v = [float(args[0])] * 3
+            v = [float(args[0])] * n
         else:
             v = [float(x) for x in args]
-        if len(v) != 3:
-            raise TypeError(f"{type(self).__name__} takes 3 components, found {len(v)}")
-        if self._round:
-            v = [_f32(x) for x in v]
-        self._v = v
+        if len(v) != n:
+            raise TypeError(f"{type(self).__name__} takes {n} components, found {len(v)}")
+        list.__init__(self, [_f32(x) for x in v] if self._round else v)
 
     @classmethod
     def _make(cls, v):
-        o = cls.__new__(cls)
-        o._v = [_f32(x) for x in v] if cls._round else v
+        o = list.__new__(cls)
+        list.extend(o, [_f32(x) for x in v] if cls._round else v)
         return o
 
-    def __getitem__(self, i):
-        return self._v[i]
+    @property
+    def _v(self):
+        return self
+
+    def _convert(self, x):
+        return _f32(x) if self._round else float(x)
 
     def __setitem__(self, i, x):
-        self._v[i] = _f32(x) if self._round else float(x)
+        if isinstance(i, slice):
+            list.__setitem__(self, i, [self._convert(y) for y in x])
+        else:
+            list.__setitem__(self, i, self._convert(x))
 
-    def __len__(self):
-        return 3
-
-    def __iter__(self):
-        return iter(self._v)
-
+    # Vector arithmetic, never the list's concatenation or repetition.
     def __add__(self, o):
-        a, b = self._v, o
-        return self._make([a[0] + b[0], a[1] + b[1], a[2] + b[2]])
+        return self._make([a + b for a, b in zip(self, o)])
 
-    __radd__ = __add__
-
-    def __iadd__(self, o):
-        return self.__add__(o)
+    __radd__ = __iadd__ = __add__
 
     def __sub__(self, o):
-        a, b = self._v, o
-        return self._make([a[0] - b[0], a[1] - b[1], a[2] - b[2]])
+        return self._make([a - b for a, b in zip(self, o)])
+
+    __isub__ = __sub__
 
     def __rsub__(self, o):
-        return self._make([o[0] - self._v[0], o[1] - self._v[1], o[2] - self._v[2]])
+        return self._make([b - a for a, b in zip(self, o)])
 
     def __neg__(self):
-        return self._make([-x for x in self._v])
+        return self._make([-x for x in self])
 
     def __mul__(self, o):
-        if isinstance(o, _Vec3):  # USD: vec * vec is the dot product
-            return self.GetDot(o)
-        return self._make([x * o for x in self._v])
+        if isinstance(o, _Vec):  # USD: vec * vec is the dot product
+            return sum(a * b for a, b in zip(self, o))
+        return self._make([x * o for x in self])
+
+    __imul__ = __mul__
 
     def __rmul__(self, o):
-        return self._make([x * o for x in self._v])
+        return self._make([x * o for x in self])
 
     def __truediv__(self, o):
-        return self._make([x / o for x in self._v])
+        return self._make([x / o for x in self])
+
+    __itruediv__ = __truediv__
 
     def __eq__(self, o):
         try:
-            return len(o) == 3 and all(a == b for a, b in zip(self._v, o))
+            return len(o) == self._N and all(a == b for a, b in zip(self, o))
         except TypeError:
             return False
 
@@ -94,25 +103,38 @@ class _Vec3(_Located):
     __hash__ = None
 
     def __repr__(self):
-        return f"Gf.{type(self).__name__}({self._v[0]!r}, {self._v[1]!r}, {self._v[2]!r})"
+        return f"Gf.{type(self).__name__}({', '.join(repr(x) for x in self)})"
+
+
+class _Vec3(_Vec):
+    __slots__ = ()
+
+    # Unrolled: the hot ones (a location plus an offset, per prim per frame).
+    def __add__(self, o):
+        return self._make([self[0] + o[0], self[1] + o[1], self[2] + o[2]])
+
+    __radd__ = __iadd__ = __add__
+
+    def __sub__(self, o):
+        return self._make([self[0] - o[0], self[1] - o[1], self[2] - o[2]])
 
     def GetDot(self, o):
-        return self._v[0] * o[0] + self._v[1] * o[1] + self._v[2] * o[2]
+        return self[0] * o[0] + self[1] * o[1] + self[2] * o[2]
 
     def GetLength(self):
         return _math.sqrt(self.GetDot(self))
 
     def GetNormalized(self, eps=1e-10):
         n = self.GetLength()
-        return self._make([x / n for x in self._v]) if n > eps else self._make([x / eps for x in self._v])
+        return self._make([x / n for x in self]) if n > eps else self._make([x / eps for x in self])
 
     def Normalize(self, eps=1e-10):
         n = self.GetLength()
-        self._v = self.GetNormalized(eps)._v
+        self[:] = self.GetNormalized(eps)
         return n
 
     def GetCross(self, o):
-        a, b = self._v, o
+        a, b = self, o
         return self._make([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
 
     def GetProjection(self, o):
@@ -136,6 +158,33 @@ class Vec3d(_Vec3):
 
 
 class Vec3f(_Vec3):
+    __slots__ = ()
+    _round = True
+
+
+class _Vec2(_Vec):
+    """Two components (ranges such as a light's intensity (min, max))."""
+    __slots__ = ()
+    _N = 2
+
+
+class Vec2i(_Vec2):
+    """Integer pairs (a count range such as the volume stack's assets:numRange)."""
+    __slots__ = ()
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self[:] = list(self)
+
+    def _convert(self, x):
+        return int(x)
+
+
+class Vec2d(_Vec2):
+    __slots__ = ()
+
+
+class Vec2f(_Vec2):
     __slots__ = ()
     _round = True
 

@@ -22,6 +22,12 @@ def _to_gf(value, native_type):
         return Gf.Vec3d._make(list(value))
     if native_type in _VEC3F:
         return Gf.Vec3f(value)
+    if native_type == "float2":
+        return Gf.Vec2f(value)
+    if native_type == "double2":
+        return Gf.Vec2d(value)
+    if native_type == "int2":
+        return Gf.Vec2i(value)
     if native_type == "quatd":
         return Gf.Quatd(*value)
     if native_type == "quatf":
@@ -37,8 +43,8 @@ def _to_gf(value, native_type):
 
 def _to_native(value):
     """A Gf/Sdf value as what the native API takes (tuples, rows, strings)."""
-    if isinstance(value, Gf._Vec3):
-        return tuple(value._v)
+    if isinstance(value, Gf._Vec):
+        return tuple(value)
     if isinstance(value, Gf._Quat):
         return (value.GetReal(),) + tuple(value.GetImaginary())
     if isinstance(value, Gf.Matrix4d):
@@ -105,13 +111,13 @@ class Attribute(_Located):
 
     def Get(self, time=None):
         if self._name == "xformOpOrder":
-            return [name for name, _ in self._prim._h.xform_ops] or None
+            return list(self._prim._h.xform_op_names) or None
         h = self._prim._h
         return _to_gf(h.get_attribute(self._name), h.attribute_type(self._name))
 
     def Set(self, value, time=None):
         if self._name == "xformOpOrder":
-            names = [name for name, _ in self._prim._h.xform_ops]
+            names = list(self._prim._h.xform_op_names)
             if list(value) != names:
                 raise _unsupported("Setting xformOpOrder to anything but the ops' own order",
                                    "sdgbehave orders ops as they were added")
@@ -141,10 +147,10 @@ class Attribute(_Located):
 
 
 class Prim(_Located):
-    __slots__ = ("_h", "_stage")
+    __slots__ = ("_h", "_stage", "_hash")
 
     def __init__(self, handle=None, stage=None):
-        self._h, self._stage = handle, stage
+        self._h, self._stage, self._hash = handle, stage, None
 
     def IsValid(self):
         return self._h is not None and self._h.is_valid
@@ -155,7 +161,11 @@ class Prim(_Located):
         return isinstance(other, Prim) and self._h == other._h
 
     def __hash__(self):
-        return hash(self._h.path) if self._h is not None else 0
+        # Scripts key dicts by prim (per prim per frame): the path is asked once.
+        h = self._hash
+        if h is None:
+            h = self._hash = hash(self._h.path) if self._h is not None else 0
+        return h
 
     def __repr__(self):
         return f"Usd.Prim(<{self._h.path if self._h is not None else ''}>)"
@@ -194,7 +204,10 @@ class Prim(_Located):
         return self._h is not None and test(self._h)
 
     def HasAPI(self, schema, *args):
-        return False
+        """The applied schemas sdgbehave's prims carry (UsdLux.LightAPI on lights,
+        UsdShade.MaterialBindingAPI); any other answers False."""
+        test = getattr(schema, "_sdg_has_api", None)
+        return bool(self._h is not None and test is not None and test(self._h))
 
     def IsActive(self):
         return True
@@ -203,7 +216,7 @@ class Prim(_Located):
         return Attribute(self, name)
 
     def HasAttribute(self, name):
-        return self._h.has_attribute(name) or (name == "xformOpOrder" and bool(self._h.xform_ops))
+        return self._h.has_attribute(name) or (name == "xformOpOrder" and bool(self._h.xform_op_names))
 
     def CreateAttribute(self, name, type_name, custom=True, variability=None):
         if self._h.has_attribute(name):
@@ -214,7 +227,7 @@ class Prim(_Located):
         return [Attribute(self, n) for n in self._h.attribute_names()]
 
     def GetPropertyNames(self):
-        return list(self._h.attribute_names()) + [n for n, _ in self._h.xform_ops]
+        return list(self._h.attribute_names()) + list(self._h.xform_op_names)
 
     GetAuthoredPropertyNames = GetPropertyNames
 
@@ -252,7 +265,18 @@ class Stage(_Located):
         return Prim(self._s.define_prim(path, type_name or "Xform"), self)
 
     def RemovePrim(self, path):
-        self._s.remove_prim(str(path))
+        """Removes a prim this behavior created. An empty Scope another
+        behavior created is left to that behavior (False), as sdgbehave removes
+        every behavior's own prims on stop anyway."""
+        handle = self._s.get_prim(str(path))
+        if handle is None:
+            return False
+        try:
+            self._s.remove_prim(str(path))
+        except ValueError as e:
+            if handle.type_name == "Scope" and "was not created by" in str(e):
+                return False
+            raise
         return True
 
     def Traverse(self, *args):

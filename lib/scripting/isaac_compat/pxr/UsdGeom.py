@@ -57,7 +57,8 @@ class XformOp(_Located):
         return None
 
     def Set(self, value, time=None):
-        self._prim._h.set_xform_op(self._name, Usd._to_native(value))
+        # A Gf vector is a list of floats, which the native call takes as it is.
+        self._prim._h.set_xform_op(self._name, value if isinstance(value, Gf._Vec) else Usd._to_native(value))
         return True
 
     def GetOpTransform(self, time=None):
@@ -88,7 +89,8 @@ class Xformable(Imageable):
         return handle.is_xformable
 
     def GetOrderedXformOps(self):
-        return [XformOp(self._prim, name) for name, _ in self._prim._h.xform_ops]
+        prim = self._prim
+        return [XformOp(prim, name) for name in prim._h.xform_op_names]
 
     def GetXformOpOrderAttr(self):
         return Usd.Attribute(self._prim, "xformOpOrder")

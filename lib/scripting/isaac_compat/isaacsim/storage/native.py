@@ -1,14 +1,14 @@
-"""isaacsim.storage.native: sdgbehave has no Nucleus assets root (None, as Isaac Sim
-returns when it finds none); give assets by path in the scene instead."""
-import carb
+"""isaacsim.storage.native: sdgbehave has no Nucleus server. The assets root
+is "" so that `get_assets_root_path() + "/Isaac/..."` stays an Isaac asset
+path, which sdgbehave resolves below --isaac-assets DIR
+(SDGBEHAVE_ISAAC_ASSETS, the scene's isaac_assets:) wherever a file is read."""
 from _isaac_compat import module_getattr as _module_getattr
 
 __getattr__ = _module_getattr(__name__)
 
 
 def get_assets_root_path(skip_check=False):
-    carb.log_warn("isaacsim.storage.native: sdgbehave has no Isaac Sim assets root; returning None")
-    return None
+    return ""
 
 
 async def get_assets_root_path_async(skip_check=False):

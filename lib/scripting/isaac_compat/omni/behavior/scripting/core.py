@@ -18,6 +18,11 @@ import _isaac_compat
 import sdgbehave as _sdgbehave
 from pxr import Sdf, Usd
 
+# The loop exists before any script code runs, so that asyncio.ensure_future
+# in a hook or an event callback schedules on it (not on a loop asyncio would
+# make up, which nothing runs).
+_isaac_compat.loop()
+
 _HOOKS = ("on_init", "on_play", "on_pause", "on_stop", "on_update", "on_destroy")
 
 
@@ -119,11 +124,25 @@ def _install_seeding():
     if getattr(real, "_sdg_seeded", False):
         return
 
+    class Generator(numpy.random.Generator):
+        """numpy's Generator, with scalar uniform(low, high) drawn as
+        low + (high - low) * random(): numpy's own formula on the same
+        next double, so the stream is bit-identical, at a quarter of the
+        cost of numpy's argument handling (scripts draw per prim per frame)."""
+
+        def uniform(self, low=0.0, high=1.0, size=None):
+            if size is None and type(low) is float and type(high) is float:
+                span = high - low
+                if span - span == 0.0:  # finite; numpy raises for an infinite span
+                    return low + span * self.random()
+            return super().uniform(low, high, size)
+
     def default_rng(seed=None):
         if seed is None:
             b = _isaac_compat.current
             seed = b._isaac_entropy() if b is not None else _random.getrandbits(64)
-        return real(seed)
+        rng = real(seed)
+        return rng if isinstance(seed, numpy.random.Generator) else Generator(rng.bit_generator)
 
     default_rng._sdg_seeded = True
     default_rng.__doc__ = real.__doc__
