@@ -15,7 +15,7 @@ import tempfile
 import numpy as np
 from PIL import Image
 
-from checklib import check, failures, finish
+from checklib import check, dataset_hashes, failures, finish
 
 PLANE_STEP = np.array([0.05, 0.02, 0.0])  # flow.yaml: /World/Plane's steadyMotion step
 FLOW_TOLERANCE_PX = 0.02   # float32 depth read back from GL, recomputed in doubles here
@@ -133,7 +133,24 @@ def main():
                                                          f"{unwarped.mean():.2f} levels unwarped)")
             occluded = inside & ~consistent
             check(occluded.sum() > 0, f"frame {t + 1}: no occluded pixels found (the box should hide some)")
-        return finish("ok: flow matches the analytic motion; warped frames match")
+        # Each iteration is its own sequence; shards (which step one frame past
+        # their last) add up to the whole run, whatever the thread count.
+        runs = {}
+        for name, flags in (("whole", ["--threads", "1"]), ("shards", None)):
+            target = f"{out}/{name}"
+            if flags is not None:
+                subprocess.run([binary, "run", scene, "--out", target, "--iterations", "2", *flags], capture_output=True)
+            else:
+                for i in range(3):
+                    subprocess.run([binary, "run", scene, "--out", target, "--iterations", "2", "--shard", f"{i}/3",
+                                    "--threads", "2"], capture_output=True)
+                subprocess.run([binary, "merge", target], capture_output=True)
+            runs[name] = dataset_hashes(target)
+        check(len(runs["whole"]) > 40 and runs["whole"] == runs["shards"], "3 shards merged differ from the whole run")
+        check(not np.any(np.load(f"{out}/whole/backward_flow_0004.npy")) and np.any(np.load(f"{out}/whole/backward_flow_0005.npy"))
+              and not np.any(np.load(f"{out}/whole/forward_flow_0003.npy")),
+              "the second iteration's first frame has a backward flow, or the first's last a forward flow")
+        return finish("ok: flow matches the analytic motion; warped frames match; shards add up")
 
 
 if __name__ == "__main__":
