@@ -212,8 +212,12 @@ void BopWriter::encode(const ProductFrame& frame, FrameFiles& out) const {
     const MaskCoverage& all = frame.coverage[e];
     uint64_t valid = 0, visibleCount = 0;
     int vx0 = f.width, vy0 = f.height, vx1 = -1, vy1 = -1;
-    for (int y = 0; y < f.height; ++y)
-      for (int x = 0; x < f.width; ++x) {
+    // Both masks lie inside the silhouette's bounds (what is visible is
+    // part of it): only those pixels are looked at.
+    std::fill(mask.begin(), mask.end(), 0);
+    std::fill(visible.begin(), visible.end(), 0);
+    for (int y = all.yMin; y <= all.yMax; ++y)
+      for (int x = all.xMin; x <= all.xMax; ++x) {
         const size_t i = size_t(y) * w + size_t(x);
         const bool in = frame.masks.covers(e, x, y);
         mask[i] = in ? 255 : 0;
