@@ -4,6 +4,7 @@
 
 #include "core/diagnostics.h"
 #include "core/file_io.h"
+#include "writers/bop_writer.h"
 #include "writers/coco_writer.h"
 #include "writers/contact_sheet.h"
 #include "writers/manifest.h"
@@ -36,6 +37,8 @@ FinalizeResult finalizeDataset(const std::string& dir, const RunInfo& info) {
     assembleCoco((fs::path(dir) / info.cocoFile).string(), info.cocoTaxonomy, fragments);
     ++result.files;
   }
+  if (!info.bopSplit.empty())
+    result.files += assembleBopScenes(dir, info.bopSplit, info.iterations, info.framesPerIteration, info.products.size());
   if (info.contactSheet && info.frames() > 0) {
     std::vector<std::string> tiles;
     for (uint64_t frame : contactSheetFrames(info.frames()))

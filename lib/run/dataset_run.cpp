@@ -3,8 +3,8 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -12,7 +12,6 @@
 #include "core/diagnostics.h"
 #include "core/file_io.h"
 #include "core/log.h"
-#include "core/recycler.h"
 #include "render/raster/renderer.h"
 #include "run/dataset_finalize.h"
 #include "run/pathtraced_color.h"
@@ -23,47 +22,20 @@
 #include "run/run_inputs.h"
 #include "run/scene_setup.h"
 #include "stage/path.h"
-#include "writers/basic_writer.h"
-#include "writers/coco_writer.h"
 #include "writers/contact_sheet.h"
-#include "writers/png_encoder.h"
+#include "writers/frame_encoder.h"
 #include "writers/manifest.h"
+#include "writers/png_encoder.h"
 #include "writers/write_pool.h"
+#include "writers/writer_registry.h"
 
 namespace sdg {
 namespace fs = std::filesystem;
 
 namespace {
 
-struct FrameShared {
-  RenderList list;
-  FrameSemantics semantics;
-  std::vector<Eigen::AlignedBox3f> itemBounds;
-};
-
-// A product drawn and queued for read-back, waiting to be collected.
-struct PendingProduct {
-  std::shared_ptr<ProductFrame> job;
-  std::shared_ptr<FrameShared> shared;
-  std::shared_ptr<Renderer::CoverageMasks> masks;  // null: the writer needs no coverage
-  size_t cameraIndex = 0;
-  bool toSheet = false;
-  int slot = 0;
-};
-
-// A frame's thumbnail with the tight box (visible pixels) and class of
-// every visible entity.
-std::vector<uint8_t> sheetTile(uint64_t frame, const FramePasses& passes, const FrameSemantics& semantics,
-                               const std::vector<Box2D>& tight) {
-  std::vector<SheetBox> boxes;
-  for (const Box2D& b : tight) {
-    const LabelSet& labels = semantics.entities[b.entity].labels;
-    auto cls = labels.find("class");
-    std::string label = cls != labels.end() ? cls->second : labels.empty() ? "" : labels.begin()->second;
-    boxes.push_back({b.xMin, b.yMin, b.xMax, b.yMax, b.semanticId, label});
-  }
-  return contactSheetTile(frame, passes.rgba, passes.width, passes.height, boxes);
-}
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Frames whose every render product the folder's manifests list with files
 // that still match their SHA-256 (what --resume may keep).
@@ -99,323 +71,389 @@ void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vec
     }
 }
 
-}  // namespace
-
-DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  const auto start = Clock::now();
-  Scene& scene = loaded.scene;
-  const SourceLoc sceneLoc{scene.sourcePath, 0, 0};
-  const WriterConfig* writerConfig = nullptr;
-  const WriterConfig* cocoConfig = nullptr;
-  for (const WriterConfig& w : scene.writers) (w.type == "BasicWriter" ? writerConfig : cocoConfig) = &w;
-  if (!writerConfig && !cocoConfig)
-    throw SceneError(sceneLoc, "the scene has no writer; add e.g. `writer: {type: BasicWriter, rgb: true}`");
-  // COCO alone still needs its images: they are written as BasicWriter's rgb.
-  WriterConfig imagesOnly{"BasicWriter", OptionSet(findWriterType("BasicWriter")->options), sceneLoc};
-  imagesOnly.options.set("rgb", Value::makeBool(true));
-  if (!writerConfig) writerConfig = &imagesOnly;
-
-  // Render products: capture.cameras, or every camera of the stage.
-  RenderList initialList = buildRenderList(scene.stage);
+// Render products: capture.cameras, or every camera of the stage; each is
+// named after its camera prim.
+std::vector<std::string> productCameras(const Scene& scene, const RenderList& list, const SourceLoc& sceneLoc) {
   std::vector<std::string> cameraPaths = scene.capture.get("cameras").get<std::vector<std::string>>();
   if (cameraPaths.empty())
-    for (const RenderCamera& c : initialList.cameras) cameraPaths.push_back(c.path);
+    for (const RenderCamera& c : list.cameras) cameraPaths.push_back(c.path);
   if (cameraPaths.empty()) throw SceneError(sceneLoc, "the scene has no Camera prim to render from");
-  std::vector<std::string> productNames;
+  return cameraPaths;
+}
+
+std::vector<std::string> productNamesOf(const std::vector<std::string>& cameraPaths, const SourceLoc& sceneLoc) {
+  std::vector<std::string> names;
   std::set<std::string> seen;
   for (const std::string& p : cameraPaths) {
     std::string name(path::name(p));
     if (!seen.insert(name).second)
       throw SceneError(sceneLoc, "two cameras are named " + name + "; render products are named after the camera");
-    productNames.push_back(name);
+    names.push_back(name);
   }
+  return names;
+}
 
-  const FramePlan& plan = options.plan;
-  const RenderSettings settings = renderSettingsFor(scene, options.render);
-  RunInfo info;
-  info.sceneHash = fileHash(scene.sourcePath);
-  info.seed = options.seed;
-  info.iterations = plan.iterations;
-  info.framesPerIteration = plan.framesPerIteration;
-  info.width = settings.width;
-  info.height = settings.height;
-  info.products = productNames;
-  if (cocoConfig) {
-    const auto& types = cocoConfig->options.get("semantic_types").get<std::vector<std::string>>();
-    info.cocoFile = cocoConfig->options.getString("file_name");
-    info.cocoTaxonomy = types.empty() ? std::string("class") : types.front();
-  }
-  info.contactSheet = scene.capture.get("contact_sheet").get<bool>();
-  info.inputs = collectRunInputs(loaded);
-  prepareOutputFolder(options.outDir, info,
-                      FolderPolicy{options.overwrite, options.resume, plan.shard.sharded(), plan.shard.tag()});
-  DatasetRunResult result;
-  result.info = info;
-  std::set<uint64_t> finished;
-  if (options.resume) {
-    removeStaleTemporaries(options.outDir);
-    finished = finishedFrames(options.outDir, productNames.size());
-  }
-  BasicWriter writer(writerConfig->options, productNames, options.seed);
-  const bool keepRadiance = writerConfig->options.getBool("hdr_color");
-  if (keepRadiance && settings.mode != RenderMode::PathTraced) {
-    const SourceLoc* at = writerConfig->options.locOf("hdr_color");
-    throw SceneError(at ? *at : sceneLoc,
+// A run with pixels, in the order it happens: prepare (products, writers,
+// folder, renderer), then per iteration the pre-roll and the timeline, per
+// frame one render of every product whose read-back overlaps the next draw,
+// each collected product submitted to the write pool; then finish.
+class DatasetRun {
+ public:
+  DatasetRun(LoadedScene& loaded, const DatasetRunOptions& options)
+      : loaded_(loaded), scene_(loaded.scene), options_(options), plan_(options.plan),
+        sceneLoc_{loaded.scene.sourcePath, 0, 0}, original_(loaded.scene.stage) {}
+
+  DatasetRunResult run();
+
+ private:
+  void prepare();
+  void startRenderer(const RenderList& initialList);
+  void runIteration(uint64_t iteration);
+  void renderFrame(Renderer& renderer, uint64_t frame, uint64_t iteration, uint64_t first,
+                   std::shared_ptr<const RenderList> previous, std::shared_ptr<const RenderList> current);
+  void resolveNext(std::shared_ptr<const RenderList> next);
+  void renderProduct(Renderer& renderer, const std::shared_ptr<const FrameScene>& scene, uint64_t frame,
+                     uint64_t iteration, uint64_t first, size_t product);
+  void collectPending();
+  void submit(std::shared_ptr<ProductFrame> frame);
+  void keepFinishedFramesAfterFailure();
+  void finish();
+
+  LoadedScene& loaded_;
+  Scene& scene_;
+  const DatasetRunOptions& options_;
+  const FramePlan& plan_;
+  const SourceLoc sceneLoc_;
+  const Clock::time_point start_ = Clock::now();
+  std::vector<std::string> cameraPaths_, productNames_;
+  RenderSettings settings_;
+  RunInfo info_;
+  DatasetRunResult result_;
+  std::set<uint64_t> finished_;  // --resume: frames kept from an earlier run
+  std::set<uint64_t> sheetFrames_;
+  unsigned threads_ = 1;
+  WriterSet writers_;
+  uint64_t runFiles_ = 0;  // files written once per run (metadata.txt, ...)
+  bool keepRadiance_ = false;
+  PassSelection passes_;
+  std::unique_ptr<ManifestWriter> manifest_;
+  std::unique_ptr<FrameEncoder> encoder_;
+  // render.mode pathtraced: the colour of every product, traced on `threads`
+  // cores while the pool encodes the frames before it.
+  std::unique_ptr<PathTracedColor> pathTraced_;
+  std::unique_ptr<RendererBringUp> bringUp_;
+  std::unique_ptr<Progress> progress_;
+  std::unique_ptr<ChangeRecorder> recorder_;
+  const Stage original_;
+  // A product drawn and queued for read-back, waiting to be collected.
+  struct Pending {
+    std::shared_ptr<ProductFrame> frame;
+    int slot = 0;
+  };
+  std::optional<Pending> pending_;
+  // Motion: the last rendered frame, waiting for the next frame's poses,
+  // and its products collected meanwhile (in order).
+  std::shared_ptr<FrameScene> awaitingNext_;
+  std::vector<std::shared_ptr<ProductFrame>> held_;
+  uint64_t queued_ = 0, sequence_ = 0;
+  // Declared last: when a write fails and the run unwinds, the pool's
+  // destructor joins the workers before what their jobs refer to goes.
+  std::unique_ptr<WritePool> pool_;
+};
+
+void DatasetRun::prepare() {
+  RenderList initialList = buildRenderList(scene_.stage);
+  cameraPaths_ = productCameras(scene_, initialList, sceneLoc_);
+  productNames_ = productNamesOf(cameraPaths_, sceneLoc_);
+  settings_ = renderSettingsFor(scene_, options_.render);
+  writers_ = makeWriters(scene_.writers,
+                         WriterSetup{productNames_, options_.seed, settings_.width, settings_.height, &scene_.stage,
+                                     &loaded_.assets},
+                         sceneLoc_);
+  keepRadiance_ = writers_.needs.radiance;
+  if (keepRadiance_ && settings_.mode != RenderMode::PathTraced) {
+    const SourceLoc* at = nullptr;
+    for (const WriterConfig& w : scene_.writers)
+      if (!at) at = w.options.locOf("hdr_color");
+    throw SceneError(at ? *at : sceneLoc_,
                      "writer.hdr_color: linear radiance comes from the path tracer; set render.mode: pathtraced "
                      "(or --render-mode pathtraced)");
   }
-  writeFiles(options.outDir, writer.metadataFiles());
-  ManifestWriter manifest(
-      (fs::path(options.outDir) / (plan.shard.sharded() ? "manifest." + plan.shard.tag() + ".jsonl" : "manifest.jsonl"))
-          .string());
 
-  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  // render.mode pathtraced: the colour of every product, traced on `threads`
-  // cores while the pool encodes the frames before it.
-  std::unique_ptr<PathTracedColor> pathTraced;
-  if (settings.mode == RenderMode::PathTraced)
-    pathTraced = std::make_unique<PathTracedColor>(loaded.assets, settings, int(threads));
-  const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
-                                  ->options.get("semantic_types")
-                                  .get<std::vector<std::string>>();
-  const bool annotations = writer.needsAnnotations() || cocoConfig != nullptr;
-  PassSelection passes = writer.passesNeeded();
-  passes.ids = passes.ids || cocoConfig != nullptr;  // COCO masks come from the ids
-  const bool coverage = writer.needsCoverage() || cocoConfig != nullptr;
-  // The renderer starts on a helper thread; with a pre-roll to hide behind,
-  // it also draws the stage as loaded once to compile its shader variants.
+  info_.sceneHash = fileHash(scene_.sourcePath);
+  info_.seed = options_.seed;
+  info_.iterations = plan_.iterations;
+  info_.framesPerIteration = plan_.framesPerIteration;
+  info_.width = settings_.width;
+  info_.height = settings_.height;
+  info_.products = productNames_;
+  info_.cocoFile = writers_.parts.cocoFile;
+  info_.cocoTaxonomy = writers_.parts.cocoTaxonomy;
+  info_.bopSplit = writers_.parts.bopSplit;
+  info_.contactSheet = scene_.capture.get("contact_sheet").get<bool>();
+  info_.inputs = collectRunInputs(loaded_);
+  prepareOutputFolder(options_.outDir, info_,
+                      FolderPolicy{options_.overwrite, options_.resume, plan_.shard.sharded(), plan_.shard.tag()});
+  result_.info = info_;
+  if (options_.resume) {
+    removeStaleTemporaries(options_.outDir);
+    finished_ = finishedFrames(options_.outDir, productNames_.size());
+  }
+  for (const auto& writer : writers_.writers) {
+    const std::vector<OutputFile> files = writer->runFiles();
+    writeFiles(options_.outDir, files);
+    runFiles_ += files.size();
+  }
+  manifest_ = std::make_unique<ManifestWriter>(
+      (fs::path(options_.outDir) /
+       (plan_.shard.sharded() ? "manifest." + plan_.shard.tag() + ".jsonl" : "manifest.jsonl"))
+          .string());
+  encoder_ = std::make_unique<FrameEncoder>(writers_.writers, writers_.needs, *manifest_, options_.outDir);
+
+  threads_ = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+  if (settings_.mode == RenderMode::PathTraced)
+    pathTraced_ = std::make_unique<PathTracedColor>(loaded_.assets, settings_, int(threads_));
+  passes_ = writers_.needs.passes();
+  startRenderer(initialList);
+  sheetFrames_ = info_.contactSheet ? contactSheetFrames(info_.frames()) : std::set<uint64_t>{};
+  const uint64_t owned = plan_.ownedEnd() - plan_.ownedBegin();
+  for (uint64_t f = plan_.ownedBegin(); f < plan_.ownedEnd(); ++f) result_.resumedFrames += finished_.count(f);
+  progress_ = std::make_unique<Progress>(owned - result_.resumedFrames, options_.progress);
+  // At most the pool's queue plus its workers plus two read-back slots of
+  // frames are alive at once; their buffers circulate.
+  pool_ = std::make_unique<WritePool>(threads_, 2 * size_t(threads_));
+}
+
+// The renderer starts on a helper thread; with a pre-roll to hide behind,
+// it also draws the stage as loaded once to compile its shader variants.
+void DatasetRun::startRenderer(const RenderList& initialList) {
   std::optional<WarmUpFrame> warmUp;
-  if (!scene.events.empty())
+  if (!scene_.events.empty())
     for (size_t c = 0; c < initialList.cameras.size(); ++c)
-      if (initialList.cameras[c].path == cameraPaths.front()) {
-        warmUp = WarmUpFrame{initialList, c, passes, std::nullopt};
-        if (coverage) {
+      if (initialList.cameras[c].path == cameraPaths_.front()) {
+        warmUp = WarmUpFrame{initialList, c, passes_, std::nullopt};
+        if (writers_.needs.coverage) {
           warmUp->coverageGroups.emplace();
-          for (const SemanticEntity& e : computeSemantics(scene.stage, initialList, semanticTypes).entities)
+          for (const SemanticEntity& e : computeSemantics(scene_.stage, initialList, writers_.semanticTypes).entities)
             warmUp->coverageGroups->push_back(e.items);
         }
         break;
       }
-  RendererBringUp bringUp([&scene, &options] { return glContextFor(scene, options.render); }, loaded.assets, settings,
-                          std::move(warmUp));
-  const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
-  std::atomic<uint64_t> files{0};
-  std::atomic<uint64_t> encodeMicros{0};
-  std::atomic<uint64_t> annotateMicros{0};
-  uint64_t owned = plan.ownedEnd() - plan.ownedBegin(), sequence = 0;
-  for (uint64_t f = plan.ownedBegin(); f < plan.ownedEnd(); ++f) result.resumedFrames += finished.count(f);
-  Progress progress(owned - result.resumedFrames, options.progress);
-  std::unique_ptr<ChangeRecorder> recorder;
-  const Stage original = scene.stage;
-  // At most the pool's queue plus its workers plus two read-back slots of
-  // frames are alive at once; their buffers circulate.
-  Recycler<FramePasses> spareFrames;
-  Recycler<Renderer::CoverageMasks> spareMasks;
-  // Declared after everything its jobs refer to: when a write fails and the
-  // run unwinds, the pool's destructor joins the workers before those go.
-  WritePool pool(threads, 2 * size_t(threads));
-  // Hands a collected product to the pool: annotators, COCO fragment,
-  // thumbnail, encoding, durable writes, then its manifest line.
-  auto submit = [&](const PendingProduct& p) {
-    auto job = p.job;
-    auto shared = p.shared;
-    auto masks = p.masks;
-    const size_t cameraIndex = p.cameraIndex;
-    const bool toSheet = p.toSheet;
-    const std::string outDir = options.outDir;
-    pool.submit([job, shared, masks, cameraIndex, toSheet, annotations, cocoConfig, &writer, &manifest, &info,
-                 outDir, &files, &encodeMicros, &annotateMicros, &spareFrames, &spareMasks, seq = sequence++] {
-      auto jobStart = Clock::now();
-      const FrameSemantics& semantics = shared->semantics;
-      std::vector<EntityCoverage> entityCoverage;
-      if (masks) {
-        std::vector<Renderer::Coverage> coverage;
-        Renderer::coverageOf(*masks, coverage);
-        spareMasks.give(std::move(*masks));
-        for (const auto& c : coverage) entityCoverage.push_back({c.pixels, c.xMin, c.yMin, c.xMax, c.yMax});
-      }
-      // Sheet frames need the tight boxes even when the writer does not.
-      if (annotations || toSheet)
-        annotate(AnnotatorInputs{job->passes, shared->list, cameraIndex, semantics, entityCoverage, shared->itemBounds},
-                 job->annotations);
-      for (const SemanticEntity& e : semantics.entities) {
-        job->entityPaths.push_back(e.primPath);
-        job->entityLabels.push_back(e.labels);
-      }
-      job->semanticLabels = semantics.semanticLabels;
-      job->renderIdPaths.assign(semantics.entityOfRenderId.size(), "");
-      for (const RenderItem& item : shared->list.items)
-        if (item.instanceId < job->renderIdPaths.size()) job->renderIdPaths[item.instanceId] = item.primPath;
-      // Parts of the frame beside the dataset's own files, tracked by the manifest with them.
-      std::vector<OutputFile> parts;
-      if (cocoConfig) {
-        std::string text = cocoFragment(writer.rgbPath(job->frame, job->product), job->passes.width,
-                                        job->passes.height, job->annotations, semantics, info.cocoTaxonomy);
-        parts.push_back({cocoFragmentPath(job->frame, job->product), std::vector<uint8_t>(text.begin(), text.end())});
-      }
-      if (toSheet)
-        parts.push_back(
-            {contactSheetTilePath(job->frame), sheetTile(job->frame, job->passes, semantics, job->annotations.tight)});
-      auto encodeStart = Clock::now();
-      annotateMicros += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(encodeStart - jobStart).count());
-      std::vector<OutputFile> encoded = writer.encode(*job);
-      const size_t datasetFiles = encoded.size();  // the hidden parts are not counted
-      for (OutputFile& part : parts) encoded.push_back(std::move(part));
-      writeFilesDurably(outDir, encoded);
-      ManifestEntry entry{job->frame, uint32_t(job->product), {}};
-      for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
-      manifest.commit(seq, std::move(entry));
-      files += datasetFiles;
-      spareFrames.give(std::move(job->passes));
-      encodeMicros +=
-          uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - encodeStart).count());
-    });
+  Scene& scene = scene_;
+  const RenderOverrides& overrides = options_.render;
+  bringUp_ = std::make_unique<RendererBringUp>([&scene, &overrides] { return glContextFor(scene, overrides); },
+                                               loaded_.assets, settings_, std::move(warmUp));
+}
+
+void DatasetRun::runIteration(uint64_t iteration) {
+  const uint64_t first = iteration * plan_.framesPerIteration;
+  const uint64_t begin = std::max(first, plan_.ownedBegin());
+  const uint64_t end = std::min(first + plan_.framesPerIteration, plan_.ownedEnd());
+  bool work = false;
+  for (uint64_t f = begin; f < end; ++f) work = work || !finished_.count(f);
+  if (!work) return;  // not ours, or all done: no pre-roll either
+
+  scene_.stage = original_;
+  RunBehaviorSetup setup;
+  BehaviorContext behaviorContext = behaviorContextFor(loaded_, options_.seed, setup);
+  behaviorContext.iteration = iteration;
+  behaviorContext.firstFrame = first;
+  behaviorContext.hooks.simulationFrame = [this](const Stage& stage, const std::string&, uint64_t) {
+    writeSimulationFrame(stage, bringUp_->renderer(), cameraPaths_, productNames_, options_.outDir,
+                         result_.simulationFrames++);
   };
-  std::optional<PendingProduct> pending;
-  uint64_t queued = 0;
-  auto collectPending = [&] {
-    if (!pending) return;
-    Renderer& renderer = bringUp.renderer();
-    renderer.collect(pending->slot, pending->job->passes);
-    if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
-    // Timed with the render stage around collectPending()'s callers.
-    if (pathTraced) {
-      const ProductFrame& job = *pending->job;
-      pathTraced->render(pending->shared->list, pending->cameraIndex, pathTraceSeed(options.seed, job.frame, job.product),
-                         pending->job->passes, keepRadiance);
+  BehaviorRuntime runtime(scene_.stage, loaded_.registry, behaviorContext);
+  runtime.init();
+  auto t0 = Clock::now();
+  runPreroll(scene_.events, runtime);
+  result_.stages.preroll += since(t0);
+  ++result_.iterationsRun;
+  for (nlohmann::ordered_json& report : setup.reports) {
+    report["iteration"] = iteration;
+    result_.settle.push_back(report);
+  }
+  if (!options_.saveStagePath.empty() && result_.iterationsRun == 1) saveStageAfterPreroll(loaded_, options_.saveStagePath);
+  if (!options_.recordPath.empty() && !recorder_) recorder_ = std::make_unique<ChangeRecorder>(options_.recordPath, original_);
+  if (recorder_) recorder_->recordPreroll(setup.reports, scene_.stage);
+
+  runtime.play();
+  Renderer& renderer = bringUp_->renderer();
+  // Motion annotators need the poses of the frames around each one: every
+  // stepped frame's render list is kept, and the frame after the shard's
+  // last is stepped too when the iteration goes on.
+  const bool motion = writers_.needs.motion;
+  const uint64_t stepEnd = motion ? std::min(first + plan_.framesPerIteration, end + 1) : end;
+  std::shared_ptr<const RenderList> previous;
+  for (uint64_t frame = first; frame < stepEnd; ++frame) {
+    t0 = Clock::now();
+    runtime.update();
+    result_.stages.behaviors += since(t0);
+    std::shared_ptr<const RenderList> current;
+    if (motion) {
+      current = std::make_shared<const RenderList>(buildRenderList(scene_.stage));
+      resolveNext(current);
     }
-    submit(*pending);
-    pending.reset();
-  };
-
-
-  // A failure (a behavior's exception, on_stop, a lost camera, a signal)
-  // keeps the frames finished before it: the one still in read-back is
-  // collected and every queued frame is written with its manifest line, so
-  // --resume continues from them; the contact sheet shows what exists.
-  try {
-    for (uint64_t iteration = 0; iteration < plan.iterations; ++iteration) {
-      const uint64_t first = iteration * plan.framesPerIteration;
-      const uint64_t begin = std::max(first, plan.ownedBegin());
-      const uint64_t end = std::min(first + plan.framesPerIteration, plan.ownedEnd());
-      bool work = false;
-      for (uint64_t f = begin; f < end; ++f) work = work || !finished.count(f);
-      if (!work) continue;  // not ours, or all done: no pre-roll either
-
-      scene.stage = original;
-      RunBehaviorSetup setup;
-      BehaviorContext behaviorContext = behaviorContextFor(loaded, options.seed, setup);
-      behaviorContext.iteration = iteration;
-      behaviorContext.firstFrame = first;
-      behaviorContext.hooks.simulationFrame = [&](const Stage& stage, const std::string&, uint64_t) {
-        writeSimulationFrame(stage, bringUp.renderer(), cameraPaths, productNames, options.outDir, result.simulationFrames++);
-      };
-      BehaviorRuntime runtime(scene.stage, loaded.registry, behaviorContext);
-      runtime.init();
-      auto t0 = Clock::now();
-      runPreroll(scene.events, runtime);
-      result.stages.preroll += since(t0);
-      ++result.iterationsRun;
-      for (nlohmann::ordered_json& report : setup.reports) {
-        report["iteration"] = iteration;
-        result.settle.push_back(report);
-      }
-      if (!options.saveStagePath.empty() && result.iterationsRun == 1) saveStageAfterPreroll(loaded, options.saveStagePath);
-      if (!options.recordPath.empty() && !recorder) recorder = std::make_unique<ChangeRecorder>(options.recordPath, original);
-      if (recorder) recorder->recordPreroll(setup.reports, scene.stage);
-
-      runtime.play();
-      Renderer& renderer = bringUp.renderer();
-      for (uint64_t frame = first; frame < end; ++frame) {
-        t0 = Clock::now();
-        runtime.update();
-        result.stages.behaviors += since(t0);
-        if (frame < begin || finished.count(frame)) continue;  // stepped, not rendered
-        if (recorder) recorder->recordFrame(frame, runtime.timeline().time(), scene.stage);
-        // What every render product of this frame shares, read by the pool.
-        auto shared = std::make_shared<FrameShared>();
-        shared->list = buildRenderList(scene.stage);
-        const RenderList& list = shared->list;
-        shared->semantics = computeSemantics(scene.stage, list, semanticTypes);
-        shared->itemBounds.reserve(list.items.size());
-        for (const RenderItem& item : list.items) shared->itemBounds.push_back(renderer.meshBounds(item));
-        std::vector<std::vector<size_t>> groups;
-        for (const SemanticEntity& e : shared->semantics.entities) groups.push_back(e.items);
-
-        for (size_t product = 0; product < cameraPaths.size(); ++product) {
-          size_t cameraIndex = list.cameras.size();
-          for (size_t c = 0; c < list.cameras.size(); ++c)
-            if (list.cameras[c].path == cameraPaths[product]) cameraIndex = c;
-          if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths[product] + " is gone");
-          auto job = std::make_shared<ProductFrame>();
-          job->frame = frame;
-          job->product = product;
-          job->camera = list.cameras[cameraIndex];
-          job->metersPerUnit = list.metersPerUnit;
-          job->passes = spareFrames.take();
-          auto renderStart = Clock::now();
-          // Draw this product and start its read-back; while the GPU works,
-          // collect the previous product (its read-back is done by now) and
-          // hand it to the pool.
-          const int slot = int(queued++ & 1);
-          // Sheet frames also read the ids back: their boxes come from them.
-          const bool toSheet = product == 0 && sheetFrames.count(frame);
-          PassSelection productPasses = passes;
-          productPasses.ids = passes.ids || toSheet;
-          renderer.queue(list, cameraIndex, productPasses, slot);
-          std::shared_ptr<Renderer::CoverageMasks> masks;
-          if (coverage) {
-            masks = std::make_shared<Renderer::CoverageMasks>(spareMasks.take());
-            renderer.queueCoverage(list, cameraIndex, groups, slot);
-          }
-          collectPending();
-          pending = PendingProduct{job, shared, masks, cameraIndex, toSheet, slot};
-          result.stages.render += since(renderStart);
-        }
-        log::debug("frame " + std::to_string(frame) + " rendered");
-        ++result.frames;
-        progress.update(result.frames);
-      }
-      runtime.stop();
-      if (recorder) recorder->recordStop(scene.stage);
-      runtime.destroy();
+    if (frame < begin || frame >= end || finished_.count(frame)) {  // stepped, not rendered
+      previous = current;
+      continue;
     }
-  } catch (...) {
-    try {
-      collectPending();
-    } catch (const std::exception& e) {
-      log::warn(std::string("the frame being read back when the run failed is lost: ") + e.what());
-    }
-    try {
-      pool.finish();
-      if (info.contactSheet && !plan.shard.sharded()) writeContactSheetOfFinishedFrames(options.outDir, info);
-    } catch (const std::exception& e) {
-      log::warn(std::string("while keeping the finished frames: ") + e.what());
-    }
-    throw;
+    if (recorder_) recorder_->recordFrame(frame, runtime.timeline().time(), scene_.stage);
+    renderFrame(renderer, frame, iteration, first, previous, current);
+    previous = current;
+  }
+  if (motion) resolveNext(nullptr);  // the iteration's last frame has no next
+  runtime.stop();
+  if (recorder_) recorder_->recordStop(scene_.stage);
+  runtime.destroy();
+}
+
+void DatasetRun::renderFrame(Renderer& renderer, uint64_t frame, uint64_t iteration, uint64_t first,
+                             std::shared_ptr<const RenderList> previous, std::shared_ptr<const RenderList> current) {
+  // What every render product of this frame shares, read by the pool.
+  auto scene = std::make_shared<FrameScene>();
+  scene->list = current ? *current : buildRenderList(scene_.stage);
+  scene->semantics = computeSemantics(scene_.stage, scene->list, writers_.semanticTypes);
+  scene->itemBounds.reserve(scene->list.items.size());
+  for (const RenderItem& item : scene->list.items) scene->itemBounds.push_back(renderer.meshBounds(item));
+  scene->previous = std::move(previous);
+  scene->nextKnown = !writers_.needs.motion;
+  if (writers_.needs.motion) awaitingNext_ = scene;
+  for (size_t product = 0; product < cameraPaths_.size(); ++product)
+    renderProduct(renderer, scene, frame, iteration, first, product);
+  log::debug("frame " + std::to_string(frame) + " rendered");
+  ++result_.frames;
+  progress_->update(result_.frames);
+}
+
+// The frame waiting for its successor's poses gets them (null: it is the
+// iteration's last), and its products collected meanwhile go to the pool.
+void DatasetRun::resolveNext(std::shared_ptr<const RenderList> next) {
+  if (!awaitingNext_) return;
+  awaitingNext_->next = std::move(next);
+  awaitingNext_->nextKnown = true;
+  awaitingNext_.reset();
+  for (auto& frame : held_) submit(std::move(frame));
+  held_.clear();
+}
+
+void DatasetRun::renderProduct(Renderer& renderer, const std::shared_ptr<const FrameScene>& scene, uint64_t frame,
+                               uint64_t iteration, uint64_t first, size_t product) {
+  const RenderList& list = scene->list;
+  size_t cameraIndex = list.cameras.size();
+  for (size_t c = 0; c < list.cameras.size(); ++c)
+    if (list.cameras[c].path == cameraPaths_[product]) cameraIndex = c;
+  if (cameraIndex == list.cameras.size()) throw RunError("camera " + cameraPaths_[product] + " is gone");
+  auto job = std::make_shared<ProductFrame>();
+  job->frame = frame;
+  job->iteration = iteration;
+  job->frameInIteration = frame - first;
+  job->product = product;
+  job->cameraIndex = cameraIndex;
+  job->scene = scene;
+  job->camera = list.cameras[cameraIndex];
+  job->metersPerUnit = list.metersPerUnit;
+  job->passes = encoder_->spareFrames.take();
+  auto renderStart = Clock::now();
+  // Draw this product and start its read-back; while the GPU works,
+  // collect the previous product (its read-back is done by now) and
+  // hand it to the pool.
+  const int slot = int(queued_++ & 1);
+  // Sheet frames also read the ids back: their boxes come from them.
+  job->toSheet = product == 0 && sheetFrames_.count(frame);
+  PassSelection productPasses = passes_;
+  productPasses.ids = passes_.ids || job->toSheet;
+  renderer.queue(list, cameraIndex, productPasses, slot);
+  if (writers_.needs.coverage) {
+    job->hasMasks = true;
+    job->masks = encoder_->spareMasks.take();
+    std::vector<std::vector<size_t>> groups;
+    for (const SemanticEntity& e : scene->semantics.entities) groups.push_back(e.items);
+    renderer.queueCoverage(list, cameraIndex, groups, slot);
   }
   collectPending();
-  progress.finish();
-  GlContext& context = bringUp.context();
-  result.renderer = context.rendererName();
-  result.backend = context.backend();
-  result.device = context.device();
-  bringUp.retireInBackground();
-  scene.stage = original;
-  if (recorder) recorder->close();
-  pool.finish();
-  uint64_t written = files + 1 + result.simulationFrames * cameraPaths.size();  // + metadata.txt, simulation
-  if (!plan.shard.sharded()) {
-    written += finalizeDataset(options.outDir, info).files;
-    result.finalized = true;
+  pending_ = Pending{job, slot};
+  result_.stages.render += since(renderStart);
+}
+
+void DatasetRun::collectPending() {
+  if (!pending_) return;
+  Renderer& renderer = bringUp_->renderer();
+  ProductFrame& frame = *pending_->frame;
+  renderer.collect(pending_->slot, frame.passes);
+  if (frame.hasMasks) renderer.collectCoverage(pending_->slot, frame.masks);
+  // Timed with the render stage around collectPending()'s callers.
+  if (pathTraced_)
+    pathTraced_->render(frame.scene->list, frame.cameraIndex, pathTraceSeed(options_.seed, frame.frame, frame.product),
+                        frame.passes, keepRadiance_);
+  if (frame.scene->nextKnown) submit(std::move(pending_->frame));
+  else held_.push_back(std::move(pending_->frame));  // until the next frame's poses are known
+  pending_.reset();
+}
+
+// Hands a collected product to the pool.
+void DatasetRun::submit(std::shared_ptr<ProductFrame> frame) {
+  FrameEncoder* encoder = encoder_.get();
+  pool_->submit([encoder, frame, sequence = sequence_++] { encoder->encode(*frame, sequence); });
+}
+
+// A failure (a behavior's exception, on_stop, a lost camera, a signal)
+// keeps the frames finished before it: the one still in read-back is
+// collected and every queued frame is written with its manifest line, so
+// --resume continues from them; the contact sheet shows what exists.
+// Frames still waiting for the next one's poses (motion) are not finished:
+// --resume makes them again.
+void DatasetRun::keepFinishedFramesAfterFailure() {
+  try {
+    collectPending();
+  } catch (const std::exception& e) {
+    log::warn(std::string("the frame being read back when the run failed is lost: ") + e.what());
   }
-  result.files = written;
-  result.stages.encodeWrite = double(encodeMicros) / 1e6;
-  result.stages.annotate = double(annotateMicros) / 1e6;
-  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return result;
+  try {
+    pool_->finish();
+    if (info_.contactSheet && !plan_.shard.sharded()) writeContactSheetOfFinishedFrames(options_.outDir, info_);
+  } catch (const std::exception& e) {
+    log::warn(std::string("while keeping the finished frames: ") + e.what());
+  }
+}
+
+void DatasetRun::finish() {
+  collectPending();
+  progress_->finish();
+  GlContext& context = bringUp_->context();
+  result_.renderer = context.rendererName();
+  result_.backend = context.backend();
+  result_.device = context.device();
+  bringUp_->retireInBackground();
+  scene_.stage = original_;
+  if (recorder_) recorder_->close();
+  pool_->finish();
+  uint64_t written = encoder_->datasetFiles + runFiles_ + result_.simulationFrames * cameraPaths_.size();
+  if (!plan_.shard.sharded()) {
+    written += finalizeDataset(options_.outDir, info_).files;
+    result_.finalized = true;
+  }
+  result_.files = written;
+  result_.stages.encodeWrite = double(encoder_->encodeMicros) / 1e6;
+  result_.stages.annotate = double(encoder_->annotateMicros) / 1e6;
+  result_.seconds = since(start_);
+}
+
+DatasetRunResult DatasetRun::run() {
+  prepare();
+  try {
+    for (uint64_t iteration = 0; iteration < plan_.iterations; ++iteration) runIteration(iteration);
+  } catch (...) {
+    keepFinishedFramesAfterFailure();
+    throw;
+  }
+  finish();
+  return result_;
+}
+
+}  // namespace
+
+DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options) {
+  return DatasetRun(loaded, options).run();
 }
 
 }  // namespace sdg

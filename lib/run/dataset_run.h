@@ -6,6 +6,10 @@
 // every update of an iteration; only frames this shard owns (and, with
 // --resume, has not finished) are rendered, so every frame's bytes depend
 // only on (scene, seed, iteration, frame) and shards add up to the whole.
+// With motion annotators (optical flow) a shard also steps the frame after
+// its last owned one, whose poses that frame's forward flow needs. The
+// writers come from the registry (writers/writer_registry.h); what they
+// need decides the passes read back.
 #include <cstdint>
 #include <optional>
 #include <string>

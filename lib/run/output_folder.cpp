@@ -22,12 +22,6 @@ const SourceLoc kOut{"--out", 0, 0};
 
 std::string runInfoPath(const std::string& dir) { return (fs::path(dir) / kPartsFolder / "run.json").string(); }
 
-void createParent(const fs::path& path) {
-  std::error_code ec;
-  fs::create_directories(path.parent_path(), ec);
-  if (ec) throw RunError("cannot create " + path.parent_path().string() + ": " + ec.message());
-}
-
 }  // namespace
 
 nlohmann::ordered_json RunInfo::toJson() const {
@@ -41,6 +35,7 @@ nlohmann::ordered_json RunInfo::toJson() const {
   j["products"] = products;
   j["coco_file"] = cocoFile;
   j["coco_taxonomy"] = cocoTaxonomy;
+  if (!bopSplit.empty()) j["bop_split"] = bopSplit;  // absent without BOP: earlier runs' run.json stay valid
   j["contact_sheet"] = contactSheet;
   j["inputs"] = inputs.toJson();
   return j;
@@ -57,6 +52,7 @@ RunInfo RunInfo::fromJson(const nlohmann::json& j) {
   info.products = j.at("products").get<std::vector<std::string>>();
   info.cocoFile = j.at("coco_file").get<std::string>();
   info.cocoTaxonomy = j.at("coco_taxonomy").get<std::string>();
+  if (j.contains("bop_split")) info.bopSplit = j.at("bop_split").get<std::string>();
   info.contactSheet = j.at("contact_sheet").get<bool>();
   if (j.contains("inputs")) info.inputs = RunInputs::fromJson(j.at("inputs"));
   return info;
@@ -159,38 +155,6 @@ void removeStaleTemporaries(const std::string& dir) {
   for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); it.increment(ec))
     if (it->is_regular_file(ec) && it->path().filename().string().find(".tmp-") != std::string::npos)
       fs::remove(it->path(), ec);
-}
-
-std::string cocoFragmentPath(uint64_t frame, size_t product) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s/coco/%012llu_%03zu.json", kPartsFolder, static_cast<unsigned long long>(frame),
-                product);
-  return name;
-}
-
-std::string contactSheetTilePath(uint64_t frame) {
-  char name[64];
-  std::snprintf(name, sizeof name, "%s/contact_sheet/%012llu.png", kPartsFolder, static_cast<unsigned long long>(frame));
-  return name;
-}
-
-void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files) {
-  std::set<std::string> folders;
-  for (const OutputFile& file : files) {
-    fs::path path = fs::path(dir) / file.path;
-    createParent(path);
-    writeFileAtomic(path.string(), file.bytes, Durability::Synced);
-    folders.insert(path.parent_path().string());
-  }
-  for (const std::string& folder : folders) syncDirectory(folder);
-}
-
-void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {
-  for (const OutputFile& file : files) {
-    fs::path path = fs::path(dir) / file.path;
-    createParent(path);
-    writeFileAtomic(path.string(), file.bytes);
-  }
 }
 
 }  // namespace sdg

@@ -10,11 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "run/run_inputs.h"
-#include "writers/basic_writer.h"
+#include "writers/output_files.h"
 
 namespace sdg {
-
-inline constexpr const char* kPartsFolder = ".sdgbehave";
 
 // What every process writing into one folder must agree on.
 struct RunInfo {
@@ -26,6 +24,7 @@ struct RunInfo {
   std::vector<std::string> products;
   std::string cocoFile;      // "" without a COCO writer
   std::string cocoTaxonomy;
+  std::string bopSplit;      // "" without a BOP writer
   bool contactSheet = true;
   RunInputs inputs;  // every input file's hash and sdgbehave's version
   // No shard count: frames depend only on (scene, seed, iteration, frame),
@@ -54,14 +53,5 @@ RunInfo readRunInfo(const std::string& dir);  // RunError when absent or corrupt
 std::vector<std::string> shardInputProblems(const std::string& dir, const RunInfo& info);
 // Temporary files a killed run left behind ("*.tmp-<pid>").
 void removeStaleTemporaries(const std::string& dir);
-
-std::string cocoFragmentPath(uint64_t frame, size_t product);  // relative
-std::string contactSheetTilePath(uint64_t frame);              // relative
-
-// Writes files (paths relative to `dir`) durably: data synced before each
-// rename, then the folders synced.
-void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files);
-// Writes files atomically without syncing (e.g. metadata, simulation frames).
-void writeFiles(const std::string& dir, const std::vector<OutputFile>& files);
 
 }  // namespace sdg

@@ -38,7 +38,7 @@ class OptionSet {
 };
 
 struct WriterConfig {
-  std::string type;  // "BasicWriter" or "CocoWriter"
+  std::string type;  // a name of writerTypes(): "BasicWriter", "CocoWriter", "BopWriter"
   OptionSet options;
   SourceLoc loc;
   bool operator==(const WriterConfig& o) const { return type == o.type && options == o.options; }

@@ -116,11 +116,18 @@ const std::vector<AttributeSpec>& basicWriterSpecs() {
       flag("distance_to_camera", false, "float32 metres from the camera centre (.npy)."),
       flag("distance_to_image_plane", false, "float32 metres along the optical axis (.npy)."),
       flag("bounding_box_3d", false, "Local extents and local-to-world transforms of labelled entities."),
+      flag("motion_vectors", false,
+           "motion_vectors_X.npy: float32 (H, W, 4) pixels each surface point moved since the previous frame "
+           "(x left-positive, y up-positive, z and w 0), Isaac's layout."),
       flag("occlusion", false, "Fraction of each entity hidden by others."),
       flag("normals", false, "World-space normals encoded as an RGBA PNG."),
       flag("camera_params", false, "Intrinsics, view and projection matrices (camera_params_X.json)."),
       flag("pointcloud", false, "World positions, colours, normals and ids of labelled pixels (.npy)."),
       flag("pointcloud_include_unlabelled", false, "Include unlabelled geometry in the point cloud."),
+      flag("forward_flow", false,
+           "forward_flow_X.npy: float32 (H, W, 2) optical flow to the next frame, (row, column) pixels (Kubric's)."),
+      flag("backward_flow", false,
+           "backward_flow_X.npy: float32 (H, W, 2) optical flow to the previous frame, (row, column) pixels."),
       tokens(option("image_output_format", Value::makeToken("png"), "File format of the rgb output."), {"png"}),
       flag("colorize_semantic_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
       flag("colorize_instance_id_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
@@ -139,6 +146,20 @@ const std::vector<AttributeSpec>& cocoWriterSpecs() {
       option("semantic_types", Value::makeStringArray({"class"}),
              "Label taxonomies whose labels become COCO categories."),
       option("file_name", Value::makeString("coco_instances.json"), "Name of the instances file in the output folder."),
+  };
+  return specs;
+}
+
+const std::vector<AttributeSpec>& bopWriterSpecs() {
+  static const std::vector<AttributeSpec> specs = {
+      option("objects", Value::makeStringArray({}),
+             "Labels (of the first semantic taxonomy) of the BOP objects; obj_id is the position in this list plus one."),
+      option("split", Value::makeString("train_pbr"), "Folder of the images: <split>/<scene_id>/ (one scene per iteration)."),
+      atLeast(1e-6, option("depth_scale", Value::makeDouble(1.0),
+                           "Millimetres per unit of the 16-bit depth images (1.0: 1 mm steps, at most 65.535 m).")),
+      option("symmetries", Value::makeStringArray({}),
+             "Symmetries of the objects for models_info.json: '<label>: continuous <x|y|z>' or "
+             "'<label>: discrete <x|y|z> <degrees>' (axes of the model frame, through its origin)."),
   };
   return specs;
 }
@@ -178,6 +199,8 @@ std::span<const WriterTypeInfo> writerTypes() {
   static const std::vector<WriterTypeInfo> types = {
       {"BasicWriter", "Replicator BasicWriter folder layout and file formats.", basicWriterSpecs()},
       {"CocoWriter", "One COCO instances JSON for the run (tight boxes, RLE masks).", cocoWriterSpecs()},
+      {"BopWriter", "The BOP 6D pose format: rgb, depth, masks, scene_gt/scene_camera/scene_gt_info, models.",
+       bopWriterSpecs()},
   };
   return types;
 }

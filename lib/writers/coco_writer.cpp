@@ -55,6 +55,12 @@ std::string cocoFragment(const std::string& imageFile, int width, int height, co
   return fragment.dump();
 }
 
+void CocoWriter::encode(const ProductFrame& frame, FrameFiles& out) const {
+  const std::string text = cocoFragment(images_.rgbPath(frame.frame, frame.product), frame.passes.width,
+                                        frame.passes.height, frame.annotations, frame.scene->semantics, taxonomy_);
+  out.parts.push_back({cocoFragmentPath(frame.frame, frame.product), std::vector<uint8_t>(text.begin(), text.end())});
+}
+
 void assembleCoco(const std::string& path, const std::string& taxonomy, const std::vector<std::string>& fragmentFiles) {
   using Json = nlohmann::ordered_json;
   std::string images, annotations;

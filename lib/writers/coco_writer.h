@@ -11,8 +11,22 @@
 #include <vector>
 
 #include "writers/annotators.h"
+#include "writers/basic_writer.h"
 
 namespace sdg {
+
+// Writes each frame's fragment (a hidden part); the dataset's finish joins
+// them. Its images are a BasicWriter's rgb files.
+class CocoWriter : public Writer {
+ public:
+  CocoWriter(const BasicWriter& images, std::string taxonomy) : images_(images), taxonomy_(std::move(taxonomy)) {}
+  AnnotatorNeeds needs() const override { return AnnotatorNeeds{.labels = true}; }
+  void encode(const ProductFrame& frame, FrameFiles& out) const override;
+
+ private:
+  const BasicWriter& images_;
+  std::string taxonomy_;
+};
 
 // The fragment of one image (JSON text).
 std::string cocoFragment(const std::string& imageFile, int width, int height, const FrameAnnotations& annotations,

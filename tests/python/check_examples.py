@@ -57,6 +57,15 @@ def main():
         labels = json.load(open(f"{seg}/semantic_segmentation_labels_0000.json"))
         if {v.get("class") for v in labels.values()} != {"floor", "crate", "ball"}:
             failures.append(f"writer_segmentation: labels {labels}")
+        bop = f"{tmp}/writer_bop.yaml"
+        for path in ("camera.json", "models/models_info.json", "models/obj_000001.ply", "train_pbr/000000/scene_gt.json",
+                     "train_pbr/000000/mask_visib/000001_000000.png", "rgb_0000.png"):
+            if not os.path.exists(f"{bop}/{path}"):
+                failures.append(f"writer_bop: missing {path}")
+        flow = f"{tmp}/writer_flow.yaml"
+        if np.load(f"{flow}/forward_flow_0000.npy").shape != (48, 64, 2) or \
+                np.load(f"{flow}/motion_vectors_0001.npy").shape != (48, 64, 4):
+            failures.append("writer_flow: unexpected flow or motion vector shapes")
         boxes = f"{tmp}/writer_boxes.yaml"
         tight = np.load(f"{boxes}/bounding_box_2d_tight_0000.npy")
         loose = np.load(f"{boxes}/bounding_box_2d_loose_0000.npy")

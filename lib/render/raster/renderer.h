@@ -13,6 +13,7 @@
 #include "assets/asset_resolver.h"
 #include "assets/image.h"
 #include "assets/mesh_data.h"
+#include "render/coverage_masks.h"
 #include "render/frame_passes.h"
 #include "render/render_settings.h"
 #include "render/raster/gl_context.h"
@@ -46,17 +47,9 @@ class Renderer {
   // For each group of items (an entity), drawn alone with the same camera:
   // how many pixels it covers and its pixel bounds (inclusive; empty when it
   // covers none). Exact, unlike projecting bounding boxes.
-  struct Coverage {
-    uint64_t pixels = 0;
-    int xMin = 0, yMin = 0, xMax = -1, yMax = -1;
-  };
-  // The masks as read back: one width x height layer of bits per 32
-  // groups (group g is bit g % 32 of layer g / 32), rows bottom first.
-  struct CoverageMasks {
-    int width = 0, height = 0;
-    size_t groups = 0;
-    std::vector<uint32_t> bits;
-  };
+  using Coverage = MaskCoverage;
+  // The masks as read back (render/coverage_masks.h).
+  using CoverageMasks = sdg::CoverageMasks;
   // Draws the masks and starts their read-back into `slot` (as queue());
   // collectCoverage() waits for them. coverageOf() turns them into pixel
   // counts and bounds: CPU work that a writer thread can take.
