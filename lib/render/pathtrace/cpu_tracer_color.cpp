@@ -29,7 +29,8 @@ void CpuTracerColor::render(const RenderList& list, size_t cameraIndex, uint64_t
   tracer_.render(list, cameraIndex, settings_.width, settings_.height, frameSeed, frame_);
   if (settings_.denoise) {
     const DenoiseInputs in{frame_.width, frame_.height, frame_.radiance.data(), frame_.albedo.data(),
-                           frame_.normal.data(), frame_.depth.data(), frame_.instance.data()};
+                           frame_.normal.data(), frame_.depth.data(), frame_.instance.data(),
+                           frame_.variance.data()};
     denoiser_.run(in, frame_.radiance.data());
   }
   passes.rgba.resize(size_t(frame_.width) * size_t(frame_.height) * 4);
