@@ -14,7 +14,7 @@
 #include "core/log.h"
 #include "render/raster/renderer.h"
 #include "run/dataset_finalize.h"
-#include "run/pathtraced_color.h"
+#include "run/color_renderer_choice.h"
 #include "run/preroll.h"
 #include "run/progress.h"
 #include "run/record.h"
@@ -138,10 +138,10 @@ class DatasetRun {
   PassSelection passes_;
   std::unique_ptr<ManifestWriter> manifest_;
   std::unique_ptr<FrameEncoder> encoder_;
-  // render.mode pathtraced: the colour of every product, traced on `threads`
-  // cores while the pool encodes the frames before it.
-  std::unique_ptr<PathTracedColor> pathTraced_;
   std::unique_ptr<RendererBringUp> bringUp_;
+  // The colour of every product: the rasterizer's, or traced (on `threads`
+  // cores, or the GPU) while the pool encodes the frames before it.
+  std::unique_ptr<ColorRenderer> color_;
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<ChangeRecorder> recorder_;
   const Stage original_;
@@ -211,10 +211,13 @@ void DatasetRun::prepare() {
   encoder_ = std::make_unique<FrameEncoder>(writers_.writers, writers_.needs, *manifest_, options_.outDir);
 
   threads_ = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
-  if (settings_.mode == RenderMode::PathTraced)
-    pathTraced_ = std::make_unique<PathTracedColor>(loaded_.assets, settings_, int(threads_));
   passes_ = writers_.needs.passes();
   startRenderer(initialList);
+  const SourceLoc* tracerAt = scene_.render.locOf("pathtracer");
+  RendererBringUp& bringUp = *bringUp_;
+  color_ = makeColorRenderer(
+      {loaded_.assets, settings_, int(threads_), [&bringUp]() -> GlContext& { return bringUp.context(); }},
+      tracerAt ? *tracerAt : sceneLoc_);
   sheetFrames_ = info_.contactSheet ? contactSheetFrames(info_.frames()) : std::set<uint64_t>{};
   const uint64_t owned = plan_.ownedEnd() - plan_.ownedBegin();
   for (uint64_t f = plan_.ownedBegin(); f < plan_.ownedEnd(); ++f) result_.resumedFrames += finished_.count(f);
@@ -382,9 +385,8 @@ void DatasetRun::collectPending() {
   renderer.collect(pending_->slot, frame.passes);
   if (frame.hasMasks) renderer.collectCoverage(pending_->slot, frame.masks);
   // Timed with the render stage around collectPending()'s callers.
-  if (pathTraced_)
-    pathTraced_->render(frame.scene->list, frame.cameraIndex, pathTraceSeed(options_.seed, frame.frame, frame.product),
-                        frame.passes, keepRadiance_);
+  color_->render(frame.scene->list, frame.cameraIndex, frameSampleSeed(options_.seed, frame.frame, frame.product),
+                 frame.passes, keepRadiance_);
   if (frame.scene->nextKnown) submit(std::move(pending_->frame));
   else held_.push_back(std::move(pending_->frame));  // until the next frame's poses are known
   pending_.reset();
