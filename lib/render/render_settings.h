@@ -4,9 +4,12 @@
 namespace sdg {
 
 enum class RenderMode { Raster, PathTraced };
+// Which path tracer draws render.mode pathtraced (render.pathtracer):
+// auto takes the GPU tracer where one is built in and usable, else the CPU's.
+enum class PathTracerChoice { Auto, Cpu, Gpu };
 
-// The fields a scene sets (resolution, subframes, mode, samples, bounces,
-// denoise) have their defaults in one place, the scene's render option table
+// The fields a scene sets (resolution, subframes, mode, pathtracer, samples,
+// bounces, denoise) have their defaults in one place, the scene's render option table
 // (scene_io/settings_specs.cpp); run/'s renderSettingsFor() and
 // defaultRenderSettings() fill them from it. The rest are the renderer's own
 // constants.
@@ -30,6 +33,7 @@ struct RenderSettings {
   // Colour from the rasterizer or the path tracer (labels always come from
   // the rasterizer's exact passes); the path tracer's inputs.
   RenderMode mode = RenderMode::Raster;
+  PathTracerChoice pathTracer = PathTracerChoice::Auto;
   int samples = 0;       // per pixel
   int maxBounces = 0;    // scattering events whose light is counted
   bool denoise = false;  // the edge-aware filter (render/pathtrace/denoiser.h)

@@ -15,7 +15,7 @@
 #include "core/recycler.h"
 #include "render/raster/renderer.h"
 #include "run/dataset_finalize.h"
-#include "run/pathtraced_color.h"
+#include "run/color_renderer_choice.h"
 #include "run/preroll.h"
 #include "run/progress.h"
 #include "run/record.h"
@@ -172,11 +172,6 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
           .string());
 
   const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  // render.mode pathtraced: the colour of every product, traced on `threads`
-  // cores while the pool encodes the frames before it.
-  std::unique_ptr<PathTracedColor> pathTraced;
-  if (settings.mode == RenderMode::PathTraced)
-    pathTraced = std::make_unique<PathTracedColor>(loaded.assets, settings, int(threads));
   const auto& semanticTypes = (cocoConfig && writerConfig == &imagesOnly ? cocoConfig : writerConfig)
                                   ->options.get("semantic_types")
                                   .get<std::vector<std::string>>();
@@ -200,6 +195,12 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
       }
   RendererBringUp bringUp([&scene, &options] { return glContextFor(scene, options.render); }, loaded.assets, settings,
                           std::move(warmUp));
+  // The colour of every product: the rasterizer's, or traced on `threads`
+  // cores while the pool encodes the frames before it.
+  const SourceLoc* tracerAt = scene.render.locOf("pathtracer");
+  std::unique_ptr<ColorRenderer> color =
+      makeColorRenderer({loaded.assets, settings, int(threads), [&bringUp]() -> GlContext& { return bringUp.context(); }},
+                        tracerAt ? *tracerAt : sceneLoc);
   const std::set<uint64_t> sheetFrames = info.contactSheet ? contactSheetFrames(info.frames()) : std::set<uint64_t>{};
   std::atomic<uint64_t> files{0};
   std::atomic<uint64_t> encodeMicros{0};
@@ -281,11 +282,9 @@ DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& option
     renderer.collect(pending->slot, pending->job->passes);
     if (pending->masks) renderer.collectCoverage(pending->slot, *pending->masks);
     // Timed with the render stage around collectPending()'s callers.
-    if (pathTraced) {
-      const ProductFrame& job = *pending->job;
-      pathTraced->render(pending->shared->list, pending->cameraIndex, pathTraceSeed(options.seed, job.frame, job.product),
-                         pending->job->passes, keepRadiance);
-    }
+    const ProductFrame& job = *pending->job;
+    color->render(pending->shared->list, pending->cameraIndex, frameSampleSeed(options.seed, job.frame, job.product),
+                  pending->job->passes, keepRadiance);
     submit(*pending);
     pending.reset();
   };

@@ -8,7 +8,7 @@
 #include "core/text.h"
 #include "render/raster/renderer.h"
 #include "render/render_list.h"
-#include "run/pathtraced_color.h"
+#include "run/color_renderer_choice.h"
 #include "writers/colors.h"
 #include "writers/png_encoder.h"
 #include "writers/semantics.h"
@@ -115,17 +115,24 @@ Picture PictureRenderer::render(const LoadedScene& loaded, const Stage& stage, c
   RenderSettings settings = renderSettingsFor(loaded.scene, overrides_);
   if (rasterOnly_) settings.mode = RenderMode::Raster;
   FramePasses frame;
-  if (settings.mode == RenderMode::PathTraced) {
-    // The path tracer's picture alone: no GL context is made.
+  const SourceLoc* tracerAt = loaded.scene.render.locOf("pathtracer");
+  const auto color = makeColorRenderer(
+      {loaded.assets, settings, 0,
+       [this, &loaded]() -> GlContext& {
+         if (!context_) context_ = glContextFor(loaded.scene, overrides_);
+         return *context_;
+       }},
+      tracerAt ? *tracerAt : SourceLoc{loaded.scene.sourcePath, 0, 0});
+  if (color->replacesRasterColor()) {
+    // A traced picture alone: no rasterizer is made for it.
     if (pass != PicturePass::Rgb) throw RunError("a path-traced picture is rgb only");
     frame.resize(settings.width, settings.height, PassSelection::colourOnly());
-    PathTracedColor(loaded.assets, settings, 0).render(list, index, pathTraceSeed(0, 0, index), frame, false);
-    picture.device = "path tracer (CPU, Embree)";
   } else {
     rasterizer(loaded, settings).render(list, index, frame, pass == PicturePass::Rgb ? PassSelection::colourOnly()
                                                                                      : PassSelection{});
-    picture.device = context_->rendererName() + " via " + context_->backend();
   }
+  color->render(list, index, frameSampleSeed(0, 0, index), frame, false);
+  picture.device = color->device().empty() ? context_->rendererName() + " via " + context_->backend() : color->device();
   std::vector<uint8_t> rgba = frame.rgba;
   if (pass != PicturePass::Rgb) overlay(rgba, frame, stage, list, pass);
   picture.png = encodePng(rgba, uint32_t(frame.width), uint32_t(frame.height), PngPixels::Rgba8,

@@ -10,6 +10,7 @@
 #include "scripting/script_loader.h"
 #include "core/text.h"
 #include "core/file_io.h"
+#include "run/color_renderer_choice.h"
 #include "scene_io/references.h"
 #include "scene_io/scene_loader.h"
 #include "scene_io/overrides.h"
@@ -37,6 +38,15 @@ RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& over
   settings.subframes = overrides.subframes.value_or(int(scene.render.getUInt("subframes")));
   const std::string mode = overrides.mode.value_or(scene.render.getString("mode"));
   settings.mode = mode == "pathtraced" ? RenderMode::PathTraced : RenderMode::Raster;
+  const std::string tracer = scene.render.getString("pathtracer");
+  settings.pathTracer = tracer == "cpu"   ? PathTracerChoice::Cpu
+                        : tracer == "gpu" ? PathTracerChoice::Gpu
+                                          : PathTracerChoice::Auto;
+  // Said before any output exists (run/color_renderer_choice.cpp says it again where the renderer is made).
+  if (settings.mode == RenderMode::PathTraced && settings.pathTracer == PathTracerChoice::Gpu && !gpuPathTracerBuiltIn()) {
+    const SourceLoc* at = scene.render.locOf("pathtracer");
+    throw SceneError(at ? *at : SourceLoc{scene.sourcePath, 0, 0}, kNoGpuTracer);
+  }
   settings.samples = overrides.samples.value_or(int(scene.render.getUInt("samples")));
   settings.maxBounces = int(scene.render.getUInt("max_bounces"));
   settings.denoise = overrides.denoise.value_or(scene.render.getBool("denoise"));

@@ -41,6 +41,11 @@ const std::vector<AttributeSpec>& renderSpecs() {
                     "Colour from the rasterizer (raster: fast, shadow maps, no bounced light) or the CPU path tracer "
                     "(pathtraced: physically based; labels still come from the rasterizer)."),
              {"raster", "pathtraced"}),
+      tokens(option("pathtracer", Value::makeToken("auto"),
+                    "Which path tracer draws render.mode pathtraced: cpu (Embree), gpu (a GPU path tracer; an error "
+                    "where this build or machine has none) or auto (the GPU's where one is built in and runs here, "
+                    "else the CPU's)."),
+             {"auto", "cpu", "gpu"}),
       atLeast(1, option("samples", Value::makeUInt(64), "Path-traced samples per pixel.")),
       atLeast(1, option("max_bounces", Value::makeUInt(8), "Path-traced scattering events whose light is counted.")),
       option("denoise", Value::makeBool(false),

@@ -1,15 +1,7 @@
-#include "run/pathtraced_color.h"
+#include "render/pathtrace/cpu_tracer_color.h"
 
 namespace sdg {
 namespace {
-
-uint64_t mix(uint64_t x) {  // splitmix64's finaliser
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ull;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 
 PathTraceSettings tracerSettings(const RenderSettings& s, int threads) {
   PathTraceSettings p;
@@ -21,17 +13,19 @@ PathTraceSettings tracerSettings(const RenderSettings& s, int threads) {
 
 DenoiseSettings denoiseSettings(int threads) {
   DenoiseSettings d;
-  d.threads = threads;
+  d.threads = unsigned(threads);
   return d;
 }
 
 }  // namespace
 
-PathTracedColor::PathTracedColor(const AssetResolver& assets, const RenderSettings& settings, int threads)
-    : settings_(settings), tracer_(assets, tracerSettings(settings, threads)), denoiser_(denoiseSettings(threads)) {}
+CpuTracerColor::CpuTracerColor(const ColorRendererInputs& inputs)
+    : settings_(inputs.settings),
+      tracer_(inputs.assets, tracerSettings(inputs.settings, inputs.threads)),
+      denoiser_(denoiseSettings(inputs.threads)) {}
 
-void PathTracedColor::render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
-                             bool keepRadiance) {
+void CpuTracerColor::render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
+                            bool keepRadiance) {
   tracer_.render(list, cameraIndex, settings_.width, settings_.height, frameSeed, frame_);
   if (settings_.denoise) {
     const DenoiseInputs in{frame_.width, frame_.height, frame_.radiance.data(), frame_.albedo.data(),
@@ -43,8 +37,8 @@ void PathTracedColor::render(const RenderList& list, size_t cameraIndex, uint64_
   if (keepRadiance) passes.hdrColor = frame_.radiance;
 }
 
-uint64_t pathTraceSeed(int64_t runSeed, uint64_t frame, size_t product) {
-  return mix(mix(uint64_t(runSeed) ^ 0x70617468ull) ^ mix(frame + 1) ^ mix(uint64_t(product) << 32));
+std::unique_ptr<ColorRenderer> makeCpuTracerColor(const ColorRendererInputs& inputs) {
+  return std::make_unique<CpuTracerColor>(inputs);
 }
 
 }  // namespace sdg

@@ -1,0 +1,57 @@
+#include "run/color_renderer_choice.h"
+
+#include "core/log.h"
+#include "render/pathtrace/cpu_tracer_color.h"
+#include "render/raster/raster_color.h"
+#ifdef SDG_HAVE_GPU_PATHTRACER
+#include "render/pathtrace/gpu/gpu_tracer_color.h"
+#endif
+
+namespace sdg {
+namespace {
+
+using Factory = std::unique_ptr<ColorRenderer> (*)(const ColorRendererInputs&);
+
+// The GPU tracer's factory where its library is built in (see
+// render/color_renderer.h, "Adding a renderer"); null until then.
+#ifdef SDG_HAVE_GPU_PATHTRACER
+constexpr Factory kGpuTracer = &makeGpuTracerColor;
+#else
+constexpr Factory kGpuTracer = nullptr;
+#endif
+
+}  // namespace
+
+const char* const kNoGpuTracer =
+    "render.pathtracer: gpu, but this build of sdgbehave has no GPU path tracer; use render.pathtracer: cpu (or auto)";
+
+bool gpuPathTracerBuiltIn() { return kGpuTracer != nullptr; }
+
+std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inputs, const SourceLoc& setting) {
+  const RenderSettings& s = inputs.settings;
+  if (s.mode == RenderMode::Raster) return makeRasterColor(inputs);
+  switch (s.pathTracer) {
+    case PathTracerChoice::Cpu:
+      return makeCpuTracerColor(inputs);
+    case PathTracerChoice::Gpu:
+      if (!kGpuTracer) throw SceneError(setting, kNoGpuTracer);
+      try {
+        return kGpuTracer(inputs);
+      } catch (const RendererUnavailable& e) {
+        throw RunError(std::string("render.pathtracer: gpu: the GPU path tracer cannot run here: ") + e.what());
+      }
+    case PathTracerChoice::Auto:
+      if (kGpuTracer) {
+        try {
+          return kGpuTracer(inputs);
+        } catch (const RendererUnavailable& e) {
+          log::warn(std::string("render.pathtracer: auto: the GPU path tracer cannot run here (") + e.what() +
+                    "); tracing on the CPU");
+        }
+      }
+      return makeCpuTracerColor(inputs);
+  }
+  return makeCpuTracerColor(inputs);
+}
+
+}  // namespace sdg
