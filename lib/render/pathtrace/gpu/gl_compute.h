@@ -47,6 +47,9 @@ class GpuUnavailable : public std::runtime_error {
   X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers)               \
   X(PFNGLDISPATCHCOMPUTEPROC, glDispatchCompute)           \
   X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)               \
+  X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)     \
+  X(PFNGLUNIFORM1IPROC, glUniform1i)                       \
+  X(PFNGLUNIFORM1FPROC, glUniform1f)                       \
   X(PFNGLFINISHPROC, glFinish)
 
 struct GlComputeApi {

@@ -19,6 +19,7 @@ extern const char kPtBsdfGlsl[];
 extern const char kPtSceneGlsl[];
 extern const char kPtLightsGlsl[];
 extern const char kPtTraceGlsl[];
+extern const char kPtDenoiseGlsl[];
 
 namespace sdg {
 namespace {
@@ -33,6 +34,7 @@ enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
   kTextureTable, kTexels, kLights, kBindingCount
 };
+constexpr GLuint kDenoiseWork = 2;  // the denoise kernel's binding of `denoiseWork`
 
 // pt_common.glsl's Params header (std430), before the float tables.
 struct ParamsHeader {
@@ -96,6 +98,11 @@ struct GpuPathTracer::Impl {
   std::vector<FilmPixel> film;
   PathTraceStats stats;
   int samplesPerDispatch = 0;
+  std::optional<DenoiseSettings> denoise;
+  GLuint denoiseProgram = 0;
+  GLuint denoiseWork = 0;  // four vec4 planes: illumination A, B, (gradient, noise), output
+  size_t denoiseCapacity = 0;
+  std::vector<float> denoised;  // the output plane, read back
 
   const GlComputeApi& gl() const { return context->gl(); }
 
@@ -121,11 +128,11 @@ struct GpuPathTracer::Impl {
     checkMemory("the scene");
   }
 
-  void compile() {
+  // Compiles and links one kernel; a failure is a bug, reported with the driver's log.
+  GLuint build(const char* const* parts, size_t count, const char* what) {
     const GlComputeApi& g = gl();
-    const char* parts[] = {kPtCommonGlsl, kPtBsdfGlsl, kPtSceneGlsl, kPtLightsGlsl, kPtTraceGlsl};
     const GLuint shader = g.glCreateShader(GL_COMPUTE_SHADER);
-    g.glShaderSource(shader, GLsizei(std::size(parts)), parts, nullptr);
+    g.glShaderSource(shader, GLsizei(count), parts, nullptr);
     g.glCompileShader(shader);
     GLint ok = 0;
     g.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
@@ -139,20 +146,72 @@ struct GpuPathTracer::Impl {
     if (!ok) {
       const std::string text = log(true, shader);
       g.glDeleteShader(shader);
-      throw RunError("GPU path tracer: the compute kernel does not compile on " + context->description() +
-                     " (a bug in sdgbehave; please report it with this log):\n" + text);
+      throw RunError(std::string("GPU path tracer: the ") + what + " kernel does not compile on " +
+                     context->description() + " (a bug in sdgbehave; please report it with this log):\n" + text);
     }
-    program = g.glCreateProgram();
-    g.glAttachShader(program, shader);
-    g.glLinkProgram(program);
+    const GLuint id = g.glCreateProgram();
+    g.glAttachShader(id, shader);
+    g.glLinkProgram(id);
     g.glDeleteShader(shader);
-    g.glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    g.glGetProgramiv(id, GL_LINK_STATUS, &ok);
     if (!ok)
-      throw RunError("GPU path tracer: the compute kernel does not link on " + context->description() +
-                     " (a bug in sdgbehave; please report it with this log):\n" + log(false, program));
+      throw RunError(std::string("GPU path tracer: the ") + what + " kernel does not link on " +
+                     context->description() + " (a bug in sdgbehave; please report it with this log):\n" + log(false, id));
+    return id;
+  }
+
+  void compile() {
+    const GlComputeApi& g = gl();
+    const char* parts[] = {kPtCommonGlsl, kPtBsdfGlsl, kPtSceneGlsl, kPtLightsGlsl, kPtTraceGlsl};
+    program = build(parts, std::size(parts), "path tracing");
     g.glGenBuffers(GLsizei(buffers.size()), buffers.data());
     // Every block gets a store before the first dispatch, even one a scene leaves empty.
     for (GLuint b = 0; b < kBindingCount; ++b) upload(Binding(b), nullptr, 0);
+  }
+
+  // denoiser.cpp's passes on the film, each a dispatch over the image.
+  void runDenoiser(int width, int height, int samples, GLuint groupsX, GLuint groupsY) {
+    const GlComputeApi& g = gl();
+    if (!denoiseProgram) {
+      const char* parts[] = {kPtDenoiseGlsl};
+      denoiseProgram = build(parts, 1, "denoising");
+      g.glGenBuffers(1, &denoiseWork);
+    }
+    const size_t pixels = size_t(width) * size_t(height), bytes = 4 * pixels * 4 * sizeof(float);
+    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, denoiseWork);
+    if (bytes > denoiseCapacity) {
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_COPY);
+      checkMemory("the denoiser's planes");
+      denoiseCapacity = bytes;
+    }
+    g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDenoiseWork, denoiseWork);
+    g.glUseProgram(denoiseProgram);
+    auto set = [&](const char* name, int v) { g.glUniform1i(g.glGetUniformLocation(denoiseProgram, name), v); };
+    auto setF = [&](const char* name, float v) { g.glUniform1f(g.glGetUniformLocation(denoiseProgram, name), v); };
+    set("width", width);
+    set("height", height);
+    set("samples", samples);
+    setF("sigmaColor", denoise->sigmaColor);
+    setF("sigmaNormal", denoise->sigmaNormal);
+    setF("sigmaDepth", denoise->sigmaDepth);
+    auto pass = [&](int which, int iteration, int source) {
+      set("pass_", which);
+      set("iteration", iteration);
+      set("source", source);
+      g.glDispatchCompute(groupsX, groupsY, 1);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    };
+    pass(0, 0, 0);
+    pass(1, 0, 0);
+    int source = 0;
+    for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) pass(2, i, source);
+    pass(3, 0, source);
+    g.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    denoised.resize(4 * pixels);
+    g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(3 * pixels * 4 * sizeof(float)),
+                         GLsizeiptr(pixels * 4 * sizeof(float)), denoised.data());
+    // The tracer's bindings again for the next frame (binding 2 is its node buffer).
+    g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodes, buffers[kNodes]);
   }
 
   void uploadScene(const ParamsHeader& header) {
@@ -210,11 +269,18 @@ GpuPathTracer::~GpuPathTracer() {
     const GlComputeApi& g = impl_->gl();
     g.glDeleteBuffers(GLsizei(impl_->buffers.size()), impl_->buffers.data());
     if (impl_->program) g.glDeleteProgram(impl_->program);
+    if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
+    if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
   } catch (...) {  // the context is going away with the tracer; nothing to report
   }
 }
 
 const PathTraceStats& GpuPathTracer::stats() const { return impl_->stats; }
+void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings) {
+  if (settings && (settings->iterations < 0 || settings->iterations > 16))
+    throw std::invalid_argument("Denoiser: iterations must be 0 to 16");
+  impl_->denoise = settings;
+}
 void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispatch = std::max(samples, 0); }
 std::string GpuPathTracer::device() const { return impl_->context->description(); }
 bool GpuPathTracer::onGpu() const { return impl_->context->onGpu(); }
@@ -268,6 +334,7 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
     g.glDispatchCompute(groupsX, groupsY, 1);
     g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
+  if (m.denoise) m.runDenoiser(width, height, samples, groupsX, groupsY);
   m.film.resize(pixels);
   g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
   g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels * sizeof(FilmPixel)), m.film.data());
@@ -287,7 +354,7 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
   for (size_t p = 0; p < pixels; ++p) {
     const FilmPixel& f = m.film[p];
     for (int c = 0; c < 3; ++c) {
-      out.radiance[3 * p + size_t(c)] = f.sum[c] / float(samples);
+      out.radiance[3 * p + size_t(c)] = m.denoise ? m.denoised[4 * p + size_t(c)] : f.sum[c] / float(samples);
       out.albedo[3 * p + size_t(c)] = f.albedo[c];
       out.normal[3 * p + size_t(c)] = f.normalDepth[c];
     }

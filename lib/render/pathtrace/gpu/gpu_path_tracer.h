@@ -26,9 +26,11 @@
 // compute or runs out of memory; RunError, with the driver's log, when a
 // kernel does not compile (a bug: exit 1).
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "assets/asset_resolver.h"
+#include "render/pathtrace/denoiser.h"
 #include "render/pathtrace/path_tracer.h"
 
 namespace sdg {
@@ -47,6 +49,11 @@ class GpuPathTracer {
               PathTracedFrame& out);
 
   const PathTraceStats& stats() const;
+  // With a value, render() also runs the denoiser (denoiser.h's filter,
+  // ported to a compute kernel; `threads` is not read) on the GPU before
+  // the frame is read back: out.radiance is then the denoised radiance.
+  // Close to the CPU Denoiser's output on the same film, not byte-identical.
+  void setDenoiser(const std::optional<DenoiseSettings>& settings);
   // Samples per pixel in one dispatch; 0 (the default): about a million
   // paths a dispatch. Changes the timing, never the image.
   void setSamplesPerDispatch(int samples);

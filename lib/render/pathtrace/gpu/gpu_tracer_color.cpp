@@ -18,7 +18,10 @@ std::unique_ptr<GpuPathTracer> makeTracer(const ColorRendererInputs& inputs) {
 }  // namespace
 
 GpuTracerColor::GpuTracerColor(const ColorRendererInputs& inputs)
-    : settings_(inputs.settings), tracer_(makeTracer(inputs)), denoiser_(denoiseSettingsOf(inputs.threads)) {}
+    : settings_(inputs.settings), tracer_(makeTracer(inputs)), denoiser_(denoiseSettingsOf(inputs.threads)) {
+  if (settings_.denoise) tracer_->setDenoiser(denoiseSettingsOf(inputs.threads));
+  settings_.denoise = false;  // done on the GPU, before the film is read back
+}
 
 std::string GpuTracerColor::device() const { return "path tracer (GPU: " + tracer_->device() + ")"; }
 

@@ -1,8 +1,8 @@
 #pragma once
 // The GPU path tracer as a ColorRenderer (render.pathtracer: gpu, or auto
-// where EGL finds a GPU): the tracer (gpu_path_tracer.h), optionally the
-// denoiser (on the CPU), then the rasterizer's tone curve, into the frame
-// whose labels the rasterizer drew.
+// where EGL finds a GPU): the tracer (gpu_path_tracer.h) and optionally the
+// denoiser, both on the GPU, then the rasterizer's tone curve, into the
+// frame whose labels the rasterizer drew.
 #include <memory>
 
 #include "render/color_renderer.h"
@@ -25,7 +25,7 @@ class GpuTracerColor final : public ColorRenderer {
   const PathTraceStats& stats() const { return tracer_->stats(); }
 
  private:
-  RenderSettings settings_;
+  RenderSettings settings_;  // denoise off: the tracer denoises on the GPU
   std::unique_ptr<GpuPathTracer> tracer_;
   Denoiser denoiser_;
   PathTracedFrame frame_;

@@ -1,0 +1,120 @@
+#version 450
+// The denoiser on the GPU: a port of denoiser.cpp (the edge-avoiding
+// à-trous filter, demodulated by the albedo, SVGF's spatial noise estimate),
+// run on the tracer's film before it is read back. One pass per dispatch:
+// 0 prepares (illumination, depth gradient), 1 estimates the noise, 2
+// filters once (from region `source` to the other), 3 remodulates into the
+// output region. Each invocation writes its own pixel only.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+struct FilmPixel {
+  vec4 sum;
+  vec4 albedo;
+  vec4 normalDepth;
+  uvec4 rays;  // w: the instance id
+};
+layout(std430, binding = 1) readonly buffer Film { FilmPixel film[]; };
+// Four regions of width * height: illumination A, illumination B, (depth
+// gradient x, y, noise, -), the output radiance.
+layout(std430, binding = 2) buffer Work { vec4 work[]; };
+
+uniform int width, height, samples, pass_, iteration, source;
+uniform float sigmaColor, sigmaNormal, sigmaDepth;
+
+const float kKernel[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+const float kMinAlbedo = 1e-3;
+const float kRelativeDepthTolerance = 1e-3;
+const float kInfinity = uintBitsToFloat(0x7f800000u);
+const float kFloatMin = 1.17549435e-38;
+
+bool finite(float v) { return !isinf(v) && !isnan(v); }
+float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+vec3 divisor(vec3 albedo) {
+  return vec3(albedo.x >= kMinAlbedo ? albedo.x : 1.0, albedo.y >= kMinAlbedo ? albedo.y : 1.0,
+              albedo.z >= kMinAlbedo ? albedo.z : 1.0);
+}
+bool hasSurface(uint p) {
+  vec4 nd = film[p].normalDepth;
+  return finite(nd.w) && nd.xyz != vec3(0.0);
+}
+float gentlerDifference(float backward, float forward) {
+  float mb = finite(backward) ? abs(backward) : kInfinity, mf = finite(forward) ? abs(forward) : kInfinity;
+  float chosen = mb <= mf ? backward : forward;
+  return finite(chosen) ? chosen : 0.0;
+}
+
+void main() {
+  int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
+  if (x >= width || y >= height) return;
+  uint n = uint(width) * uint(height);
+  uint p = uint(y) * uint(width) + uint(x);
+  if (pass_ == 0) {
+    vec3 radiance = film[p].sum.xyz / float(samples);
+    work[p] = vec4(radiance / divisor(film[p].albedo.xyz), 0.0);
+    float z = film[p].normalDepth.w;
+    float gx = gentlerDifference(x > 0 ? z - film[p - 1u].normalDepth.w : kInfinity,
+                                 x + 1 < width ? film[p + 1u].normalDepth.w - z : kInfinity);
+    float gy = gentlerDifference(y > 0 ? z - film[p - uint(width)].normalDepth.w : kInfinity,
+                                 y + 1 < height ? film[p + uint(width)].normalDepth.w - z : kInfinity);
+    work[2u * n + p] = vec4(gx, gy, 0.0, 0.0);
+  } else if (pass_ == 1) {
+    float sum = 0.0, sum2 = 0.0;
+    int count = 0;
+    uint id = film[p].rays.w;
+    for (int qy = max(0, y - 2); qy <= min(height - 1, y + 2); ++qy)
+      for (int qx = max(0, x - 2); qx <= min(width - 1, x + 2); ++qx) {
+        uint q = uint(qy) * uint(width) + uint(qx);
+        if (!hasSurface(q) || film[q].rays.w != id) continue;
+        float l = luminance(work[q].xyz);
+        sum += l;
+        sum2 += l * l;
+        ++count;
+      }
+    float c = float(count);
+    work[2u * n + p].z = count > 1 ? sqrt(max(0.0, sum2 / c - (sum / c) * (sum / c))) : 0.0;
+  } else if (pass_ == 2) {
+    uint from = uint(source) * n, to = uint(1 - source) * n;
+    vec3 cp = work[from + p].xyz;
+    if (!hasSurface(p)) {
+      work[to + p] = vec4(cp, 0.0);
+      return;
+    }
+    vec3 np = film[p].normalDepth.xyz;
+    float zp = film[p].normalDepth.w;
+    vec4 aux = work[2u * n + p];
+    float luminanceP = luminance(cp);
+    float scaledSigma = sigmaColor * pow(0.5, 0.5 * float(iteration));
+    float colorScale = scaledSigma * aux.z + 0.01 * abs(luminanceP) + 1e-6;
+    int step = 1 << iteration;
+    uint id = film[p].rays.w;
+    vec3 sum = vec3(0.0);
+    float weightSum = 0.0;
+    for (int ky = -2; ky <= 2; ++ky) {
+      int qy = y + ky * step;
+      if (qy < 0 || qy >= height) continue;
+      for (int kx = -2; kx <= 2; ++kx) {
+        int qx = x + kx * step;
+        if (qx < 0 || qx >= width) continue;
+        uint q = uint(qy) * uint(width) + uint(qx);
+        vec3 cq = work[from + q].xyz;
+        float weight = kKernel[kx + 2] * kKernel[ky + 2];
+        if (q != p) {
+          if (film[q].rays.w != id) continue;
+          vec4 nq = film[q].normalDepth;
+          float cosine = dot(np, nq.xyz);
+          float dz = abs(nq.w - zp);
+          if (!(cosine > 0.0) || !finite(dz)) continue;
+          float expectedDz = abs(aux.x * float(qx - x) + aux.y * float(qy - y));
+          float depthScale = sigmaDepth * expectedDz + kRelativeDepthTolerance * abs(zp);
+          float colorDistance = abs(luminance(cq) - luminanceP);
+          weight *= pow(cosine, sigmaNormal) * exp(-dz / max(depthScale, kFloatMin)) * exp(-colorDistance / colorScale);
+        }
+        sum += weight * cq;
+        weightSum += weight;
+      }
+    }
+    work[to + p] = vec4(sum / weightSum, 0.0);
+  } else {
+    work[3u * n + p] = vec4(work[uint(source) * n + p].xyz * divisor(film[p].albedo.xyz), 0.0);
+  }
+}
