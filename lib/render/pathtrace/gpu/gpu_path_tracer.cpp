@@ -100,7 +100,7 @@ struct GpuPathTracer::Impl {
   int samplesPerDispatch = 0;
   std::optional<DenoiseSettings> denoise;
   GLuint denoiseProgram = 0;
-  GLuint denoiseWork = 0;  // four vec4 planes: illumination A, B, (gradient, noise), output
+  GLuint denoiseWork = 0;  // five vec4 planes: illumination A, B, (gradient, noise, id), output, guides
   size_t denoiseCapacity = 0;
   std::vector<float> denoised;  // the output plane, read back
 
@@ -177,10 +177,10 @@ struct GpuPathTracer::Impl {
       denoiseProgram = build(parts, 1, "denoising");
       g.glGenBuffers(1, &denoiseWork);
     }
-    const size_t pixels = size_t(width) * size_t(height), bytes = 4 * pixels * 4 * sizeof(float);
+    const size_t pixels = size_t(width) * size_t(height), bytes = 5 * pixels * 4 * sizeof(float);
     g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, denoiseWork);
     if (bytes > denoiseCapacity) {
-      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_COPY);
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
       checkMemory("the denoiser's planes");
       denoiseCapacity = bytes;
     }
@@ -313,7 +313,8 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
   const size_t pixels = size_t(width) * size_t(height);
   if (m.capacity[kFilm] < pixels * sizeof(FilmPixel)) {
     g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
-    g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_READ);
+    // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
+    g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
     m.checkMemory("the film");
     m.capacity[kFilm] = pixels * sizeof(FilmPixel);
   }

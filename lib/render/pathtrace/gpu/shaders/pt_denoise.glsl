@@ -14,8 +14,10 @@ struct FilmPixel {
   uvec4 rays;  // w: the instance id
 };
 layout(std430, binding = 1) readonly buffer Film { FilmPixel film[]; };
-// Four regions of width * height: illumination A, illumination B, (depth
-// gradient x, y, noise, -), the output radiance.
+// Five regions of width * height: illumination A, illumination B, (depth
+// gradient x, y, noise, instance id), the output radiance, the guides
+// (normal, depth). Pass 0 copies the guides out of the film, so the taps of
+// the later passes read this buffer alone.
 layout(std430, binding = 2) buffer Work { vec4 work[]; };
 
 uniform int width, height, samples, pass_, iteration, source;
@@ -33,10 +35,7 @@ vec3 divisor(vec3 albedo) {
   return vec3(albedo.x >= kMinAlbedo ? albedo.x : 1.0, albedo.y >= kMinAlbedo ? albedo.y : 1.0,
               albedo.z >= kMinAlbedo ? albedo.z : 1.0);
 }
-bool hasSurface(uint p) {
-  vec4 nd = film[p].normalDepth;
-  return finite(nd.w) && nd.xyz != vec3(0.0);
-}
+bool hasSurface(vec4 normalDepth) { return finite(normalDepth.w) && normalDepth.xyz != vec3(0.0); }
 float gentlerDifference(float backward, float forward) {
   float mb = finite(backward) ? abs(backward) : kInfinity, mf = finite(forward) ? abs(forward) : kInfinity;
   float chosen = mb <= mf ? backward : forward;
@@ -56,15 +55,16 @@ void main() {
                                  x + 1 < width ? film[p + 1u].normalDepth.w - z : kInfinity);
     float gy = gentlerDifference(y > 0 ? z - film[p - uint(width)].normalDepth.w : kInfinity,
                                  y + 1 < height ? film[p + uint(width)].normalDepth.w - z : kInfinity);
-    work[2u * n + p] = vec4(gx, gy, 0.0, 0.0);
+    work[2u * n + p] = vec4(gx, gy, 0.0, float(film[p].rays.w));  // ids are exact as floats below 2^24
+    work[4u * n + p] = film[p].normalDepth;
   } else if (pass_ == 1) {
     float sum = 0.0, sum2 = 0.0;
     int count = 0;
-    uint id = film[p].rays.w;
+    float id = work[2u * n + p].w;
     for (int qy = max(0, y - 2); qy <= min(height - 1, y + 2); ++qy)
       for (int qx = max(0, x - 2); qx <= min(width - 1, x + 2); ++qx) {
         uint q = uint(qy) * uint(width) + uint(qx);
-        if (!hasSurface(q) || film[q].rays.w != id) continue;
+        if (!hasSurface(work[4u * n + q]) || work[2u * n + q].w != id) continue;
         float l = luminance(work[q].xyz);
         sum += l;
         sum2 += l * l;
@@ -75,18 +75,19 @@ void main() {
   } else if (pass_ == 2) {
     uint from = uint(source) * n, to = uint(1 - source) * n;
     vec3 cp = work[from + p].xyz;
-    if (!hasSurface(p)) {
+    vec4 guide = work[4u * n + p];
+    if (!hasSurface(guide)) {
       work[to + p] = vec4(cp, 0.0);
       return;
     }
-    vec3 np = film[p].normalDepth.xyz;
-    float zp = film[p].normalDepth.w;
+    vec3 np = guide.xyz;
+    float zp = guide.w;
     vec4 aux = work[2u * n + p];
     float luminanceP = luminance(cp);
     float scaledSigma = sigmaColor * pow(0.5, 0.5 * float(iteration));
     float colorScale = scaledSigma * aux.z + 0.01 * abs(luminanceP) + 1e-6;
     int step = 1 << iteration;
-    uint id = film[p].rays.w;
+    float id = aux.w;
     vec3 sum = vec3(0.0);
     float weightSum = 0.0;
     for (int ky = -2; ky <= 2; ++ky) {
@@ -99,8 +100,8 @@ void main() {
         vec3 cq = work[from + q].xyz;
         float weight = kKernel[kx + 2] * kKernel[ky + 2];
         if (q != p) {
-          if (film[q].rays.w != id) continue;
-          vec4 nq = film[q].normalDepth;
+          if (work[2u * n + q].w != id) continue;
+          vec4 nq = work[4u * n + q];
           float cosine = dot(np, nq.xyz);
           float dz = abs(nq.w - zp);
           if (!(cosine > 0.0) || !finite(dz)) continue;
