@@ -4,7 +4,7 @@
 - render.pathtracer: gpu writes the dataset: the same labels as the CPU
   tracer's run, a radiance (hdr_color) that is not the CPU tracer's bytes
   (the two are not byte-identical) but close to it, and byte-identical on a
-  rerun;
+  rerun; with its denoiser, 2 shards merged equal one run;
 - a device without OpenGL 4.3 compute (Mesa told to offer 3.3) fails the
   gpu choice with exit 1 and a message saying why, and the auto choice
   traces on the CPU: the same bytes as render.pathtracer: cpu.
@@ -60,6 +60,19 @@ def main():
         pg = np.asarray(Image.open(f"{tmp}/gpu/rgb_0000.png"), dtype=np.float64)[..., :3]
         pc = np.asarray(Image.open(f"{tmp}/cpu/rgb_0000.png"), dtype=np.float64)[..., :3]
         check(np.abs(pg - pc).mean() < 2, f"rgb: mean difference {np.abs(pg - pc).mean():.2f} of 255")
+
+        # The GPU denoiser too, split into shards: every frame's bytes depend only on the seed, frame and pixel.
+        two = ARGS[:5] + ["2"] + ARGS[6:] + ["--denoise", "--set", "render.pathtracer=gpu"]
+        whole = subprocess.run([binary, "run", scene, "--out", f"{tmp}/whole", *two], capture_output=True, text=True)
+        check(whole.returncode == 0, f"2 frames denoised: exit {whole.returncode}: {whole.stderr[-300:]}")
+        for i in (0, 1):
+            subprocess.run([binary, "run", scene, "--out", f"{tmp}/shards", *two, "--shard", f"{i}/2"], check=True,
+                           capture_output=True)
+        subprocess.run([binary, "merge", f"{tmp}/shards"], check=True, capture_output=True)
+        w, sh = dataset_hashes(f"{tmp}/whole"), dataset_hashes(f"{tmp}/shards")
+        for name in ("rgb_0000.png", "rgb_0001.png", "hdr_color_0000.npy", "hdr_color_0001.npy"):
+            check(name in w and sh.get(name) == w[name], f"{name} differs between 2 shards and one run")
+        check(w["hdr_color_0000.npy"] != g["hdr_color_0000.npy"], "--denoise changed nothing")
 
         refused = run(binary, scene, f"{tmp}/refused", "gpu", no_compute)
         check(refused.returncode == 1, f"gpu without compute: exit {refused.returncode}, expected 1")

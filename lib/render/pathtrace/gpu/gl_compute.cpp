@@ -2,7 +2,11 @@
 
 #include <dlfcn.h>
 
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <EGL/egl.h>
@@ -45,15 +49,13 @@ PFNEGLGETPROCADDRESSPROC loadEgl(void*& library) {
   return reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(library, "eglGetProcAddress"));
 }
 
-class EglComputeContext final : public GlComputeContext {
+// The context itself, made and used on one thread (ThreadedContext's).
+class EglComputeContext {
  public:
   EglComputeContext() {
     auto getProc = loadEgl(library_);
     if (!getProc) throw GpuUnavailable("GPU path tracer: cannot load libEGL.so.1 (or it has no eglGetProcAddress)");
     makeCurrent_ = eglFunction<PFNEGLMAKECURRENTPROC>(getProc, "eglMakeCurrent");
-    getCurrentContext_ = eglFunction<PFNEGLGETCURRENTCONTEXTPROC>(getProc, "eglGetCurrentContext");
-    getCurrentDisplay_ = eglFunction<PFNEGLGETCURRENTDISPLAYPROC>(getProc, "eglGetCurrentDisplay");
-    getCurrentSurface_ = eglFunction<PFNEGLGETCURRENTSURFACEPROC>(getProc, "eglGetCurrentSurface");
     destroyContext_ = eglFunction<PFNEGLDESTROYCONTEXTPROC>(getProc, "eglDestroyContext");
     auto initialize = eglFunction<PFNEGLINITIALIZEPROC>(getProc, "eglInitialize");
     auto bindApi = eglFunction<PFNEGLBINDAPIPROC>(getProc, "eglBindAPI");
@@ -83,7 +85,8 @@ class EglComputeContext final : public GlComputeContext {
     }
     if (context_ == EGL_NO_CONTEXT)
       throw GpuUnavailable("GPU path tracer: the device offers no OpenGL 4.3 core context (compute shaders)");
-    Scope scope(*this);
+    if (!makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw GpuUnavailable("GPU path tracer: cannot make its context current");
 #define SDG_LOAD_GL(type, name)                                                                     \
   gl_.name = reinterpret_cast<type>(getProc(#name));                                                \
   if (!gl_.name) throw GpuUnavailable("GPU path tracer: the OpenGL function " #name " is missing");
@@ -93,52 +96,97 @@ class EglComputeContext final : public GlComputeContext {
                    reinterpret_cast<const char*>(gl_.glGetString(GL_VERSION));
   }
 
-  ~EglComputeContext() override {
+  ~EglComputeContext() {
     if (context_ != EGL_NO_CONTEXT) {
-      if (getCurrentContext_() == context_) makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       destroyContext_(display_, context_);
     }
     // The display stays initialised and libEGL loaded, as in the rasterizer's back end.
   }
 
-  std::string description() const override { return description_; }
-  bool onGpu() const override { return onGpu_; }
-
- protected:
-  void enter() override {
-    savedDisplay_ = getCurrentDisplay_();
-    savedContext_ = getCurrentContext_();
-    savedDraw_ = getCurrentSurface_(EGL_DRAW);
-    savedRead_ = getCurrentSurface_(EGL_READ);
-    if (!makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw GpuUnavailable("GPU path tracer: cannot make its context current");
-  }
-  void leave() override {
-    if (savedContext_ != EGL_NO_CONTEXT && savedDisplay_ != EGL_NO_DISPLAY)
-      makeCurrent_(savedDisplay_, savedDraw_, savedRead_, savedContext_);
-    else
-      makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  }
+  const GlComputeApi& gl() const { return gl_; }
+  std::string description() const { return description_; }
+  bool onGpu() const { return onGpu_; }
 
  private:
   void* library_ = nullptr;
   PFNEGLMAKECURRENTPROC makeCurrent_ = nullptr;
-  PFNEGLGETCURRENTCONTEXTPROC getCurrentContext_ = nullptr;
-  PFNEGLGETCURRENTDISPLAYPROC getCurrentDisplay_ = nullptr;
-  PFNEGLGETCURRENTSURFACEPROC getCurrentSurface_ = nullptr;
   PFNEGLDESTROYCONTEXTPROC destroyContext_ = nullptr;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
-  EGLDisplay savedDisplay_ = EGL_NO_DISPLAY;
-  EGLContext savedContext_ = EGL_NO_CONTEXT;
-  EGLSurface savedDraw_ = EGL_NO_SURFACE, savedRead_ = EGL_NO_SURFACE;
+  GlComputeApi gl_;
   bool onGpu_ = false;
   std::string description_;
 };
 
+// Owns the thread the context lives on; run() hands it one task at a time.
+class ThreadedContext final : public GlComputeContext {
+ public:
+  ThreadedContext() : thread_([this] { loop(); }) {
+    try {
+      run([this] { context_ = std::make_unique<EglComputeContext>(); });
+    } catch (...) {
+      stop();
+      throw;
+    }
+  }
+  ~ThreadedContext() override {
+    try {
+      run([this] { context_.reset(); });
+    } catch (...) {  // going away; nothing to report to
+    }
+    stop();
+  }
+
+  const GlComputeApi& gl() const override { return context_->gl(); }
+  std::string description() const override { return context_->description(); }
+  bool onGpu() const override { return context_->onGpu(); }
+
+  void run(const std::function<void()>& task) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    task_ = &task;
+    failure_ = nullptr;
+    wake_.notify_all();
+    done_.wait(lock, [this] { return task_ == nullptr; });
+    if (failure_) std::rethrow_exception(failure_);
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return task_ != nullptr || stopping_; });
+      if (!task_) return;
+      try {
+        (*task_)();
+      } catch (...) {
+        failure_ = std::current_exception();
+      }
+      task_ = nullptr;
+      done_.notify_all();
+    }
+  }
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void()>* task_ = nullptr;
+  std::exception_ptr failure_;
+  bool stopping_ = false;
+  std::unique_ptr<EglComputeContext> context_;
+  std::thread thread_;  // last: started once the members it uses exist
+};
+
 }  // namespace
 
-std::unique_ptr<GlComputeContext> createGlComputeContext() { return std::make_unique<EglComputeContext>(); }
+std::unique_ptr<GlComputeContext> createGlComputeContext() { return std::make_unique<ThreadedContext>(); }
 
 bool eglGpuDeviceListed() {
   void* library = nullptr;

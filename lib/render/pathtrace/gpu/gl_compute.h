@@ -3,10 +3,12 @@
 // shaders, with no surface. It comes from EGL: the first GPU through EGL's
 // device platform, else Mesa's surfaceless platform (llvmpipe), so the same
 // kernels run in CI on the CPU. It is separate from the rasterizer's 3.3
-// context, and render calls make it current only for their own duration,
-// restoring whatever context the thread had (the rasterizer's).
+// context and lives on a thread of its own, where it stays current: the
+// calling thread's current context (the rasterizer's, EGL or OSMesa, which
+// share Mesa's dispatch) is never touched.
 #include <GL/glcorearb.h>
 
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -61,29 +63,15 @@ struct GlComputeApi {
 class GlComputeContext {
  public:
   virtual ~GlComputeContext() = default;
-  const GlComputeApi& gl() const { return gl_; }
+  // The functions, to be called inside run() only.
+  virtual const GlComputeApi& gl() const = 0;
   // "NVIDIA H100 PCIe/PCIe/SSE2, 4.5.0 NVIDIA ..." or "llvmpipe (LLVM ...), 4.5 (Core Profile) Mesa ..."
   virtual std::string description() const = 0;
   // True when the context runs on a GPU rather than Mesa's software device.
   virtual bool onGpu() const = 0;
-
-  // Makes the context current on this thread for the guard's life, then
-  // restores the thread's previous context.
-  class Scope {
-   public:
-    explicit Scope(GlComputeContext& context) : context_(context) { context_.enter(); }
-    ~Scope() { context_.leave(); }
-    Scope(const Scope&) = delete;
-    Scope& operator=(const Scope&) = delete;
-
-   private:
-    GlComputeContext& context_;
-  };
-
- protected:
-  virtual void enter() = 0;
-  virtual void leave() = 0;
-  GlComputeApi gl_;
+  // Runs `task` on the context's thread, where the context is current, and
+  // waits for it; rethrows what it throws. One task at a time.
+  virtual void run(const std::function<void()>& task) = 0;
 };
 
 // GpuUnavailable when EGL is missing or no context with GL 4.3 compute

@@ -258,19 +258,19 @@ GpuPathTracer::GpuPathTracer(const AssetResolver& assets, const PathTraceSetting
     : impl_(std::make_unique<Impl>(assets, settings)) {
   impl_->settings.samples = std::max(impl_->settings.samples, 1);
   impl_->settings.maxBounces = std::max(impl_->settings.maxBounces, 0);
-  GlComputeContext::Scope current(*impl_->context);
-  impl_->compile();
+  impl_->context->run([this] { impl_->compile(); });
 }
 
 GpuPathTracer::~GpuPathTracer() {
   if (!impl_ || !impl_->context) return;
   try {
-    GlComputeContext::Scope current(*impl_->context);
-    const GlComputeApi& g = impl_->gl();
-    g.glDeleteBuffers(GLsizei(impl_->buffers.size()), impl_->buffers.data());
-    if (impl_->program) g.glDeleteProgram(impl_->program);
-    if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
-    if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
+    impl_->context->run([this] {
+      const GlComputeApi& g = impl_->gl();
+      g.glDeleteBuffers(GLsizei(impl_->buffers.size()), impl_->buffers.data());
+      if (impl_->program) g.glDeleteProgram(impl_->program);
+      if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
+      if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
+    });
   } catch (...) {  // the context is going away with the tracer; nothing to report
   }
 }
@@ -292,84 +292,86 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
                                 std::to_string(list.cameras.size()));
   if (width < 1 || height < 1) throw std::invalid_argument("path tracer: the image size must be at least 1 x 1");
   Impl& m = *impl_;
-  const auto setupStart = std::chrono::steady_clock::now();
-  GlComputeContext::Scope current(*m.context);
-  const GlComputeApi& g = m.gl();
-  m.scene.update(list);
-  const int samples = m.settings.samples;
-  ParamsHeader header{};
-  cameraPlanes(list.cameras[cameraIndex], width, height, header);
-  const int32_t counts[4] = {m.settings.maxBounces, int32_t(m.scene.lights.size()), int32_t(m.scene.instances.size()),
-                             samples};
-  std::copy(counts, counts + 4, header.counts);
-  header.seed[0] = uint32_t(frameSeed);
-  header.seed[1] = uint32_t(frameSeed >> 32);
-  header.seed[2] = uint32_t(m.scene.topRoot);
-  std::copy(m.scene.dome, m.scene.dome + 4, header.dome);
-  std::copy(m.scene.domeTables, m.scene.domeTables + 4, header.domeTables);
-  header.size[0] = width;
-  header.size[1] = height;
-  m.uploadScene(header);
-  const size_t pixels = size_t(width) * size_t(height);
-  if (m.capacity[kFilm] < pixels * sizeof(FilmPixel)) {
-    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
-    // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
-    g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
-    m.checkMemory("the film");
-    m.capacity[kFilm] = pixels * sizeof(FilmPixel);
-  }
-  for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, m.buffers[b]);
-  g.glUseProgram(m.program);
-  g.glFinish();
-
-  const auto traceStart = std::chrono::steady_clock::now();
-  const int perDispatch = m.samplesPerDispatch > 0 ? std::min(m.samplesPerDispatch, samples)
-                                                  : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
-  const GLuint groupsX = GLuint((width + kGroupSize - 1) / kGroupSize), groupsY = GLuint((height + kGroupSize - 1) / kGroupSize);
-  for (int first = 0; first < samples; first += perDispatch) {
-    header.size[2] = first;
-    header.size[3] = std::min(perDispatch, samples - first);
-    header.seed[3] = first == 0 ? 1u : 0u;  // the first dispatch also writes the label planes and clears the sums
-    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kParams]);
-    g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, &header);
-    g.glDispatchCompute(groupsX, groupsY, 1);
-    g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  }
-  if (m.denoise) m.runDenoiser(width, height, samples, groupsX, groupsY);
-  m.film.resize(pixels);
-  g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
-  g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels * sizeof(FilmPixel)), m.film.data());
-  const GLenum error = g.glGetError();
-  if (error == GL_OUT_OF_MEMORY) throw GpuUnavailable("GPU path tracer: out of GPU memory while tracing");
-  if (error != GL_NO_ERROR) throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while tracing");
-  const auto traceEnd = std::chrono::steady_clock::now();
-
-  out.width = width;
-  out.height = height;
-  out.radiance.resize(3 * pixels);
-  out.albedo.resize(3 * pixels);
-  out.normal.resize(3 * pixels);
-  out.depth.resize(pixels);
-  out.instance.resize(pixels);
-  PathTraceStats stats;
-  for (size_t p = 0; p < pixels; ++p) {
-    const FilmPixel& f = m.film[p];
-    for (int c = 0; c < 3; ++c) {
-      out.radiance[3 * p + size_t(c)] = m.denoise ? m.denoised[4 * p + size_t(c)] : f.sum[c] / float(samples);
-      out.albedo[3 * p + size_t(c)] = f.albedo[c];
-      out.normal[3 * p + size_t(c)] = f.normalDepth[c];
+  // On the context's thread: the caller's own GL context (the rasterizer's) is left alone.
+  m.context->run([&] {
+    const auto setupStart = std::chrono::steady_clock::now();
+    const GlComputeApi& g = m.gl();
+    m.scene.update(list);
+    const int samples = m.settings.samples;
+    ParamsHeader header{};
+    cameraPlanes(list.cameras[cameraIndex], width, height, header);
+    const int32_t counts[4] = {m.settings.maxBounces, int32_t(m.scene.lights.size()), int32_t(m.scene.instances.size()),
+                               samples};
+    std::copy(counts, counts + 4, header.counts);
+    header.seed[0] = uint32_t(frameSeed);
+    header.seed[1] = uint32_t(frameSeed >> 32);
+    header.seed[2] = uint32_t(m.scene.topRoot);
+    std::copy(m.scene.dome, m.scene.dome + 4, header.dome);
+    std::copy(m.scene.domeTables, m.scene.domeTables + 4, header.domeTables);
+    header.size[0] = width;
+    header.size[1] = height;
+    m.uploadScene(header);
+    const size_t pixels = size_t(width) * size_t(height);
+    if (m.capacity[kFilm] < pixels * sizeof(FilmPixel)) {
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
+      // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
+      m.checkMemory("the film");
+      m.capacity[kFilm] = pixels * sizeof(FilmPixel);
     }
-    out.depth[p] = f.normalDepth[3];
-    out.instance[p] = f.rays[3];
-    stats.rays += uint64_t(f.rays[0]) | (uint64_t(f.rays[1]) << 32);
-    stats.cameraRays += f.rays[2];
-    stats.droppedSamples += uint64_t(f.sum[3]);
-  }
-  stats.samples = uint64_t(pixels) * uint64_t(samples);
-  stats.seconds = std::chrono::duration<double>(traceEnd - traceStart).count();
-  stats.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
-  stats.threads = 0;
-  m.stats = stats;
+    for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, m.buffers[b]);
+    g.glUseProgram(m.program);
+    g.glFinish();
+
+    const auto traceStart = std::chrono::steady_clock::now();
+    const int perDispatch = m.samplesPerDispatch > 0 ? std::min(m.samplesPerDispatch, samples)
+                                                    : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
+    const GLuint groupsX = GLuint((width + kGroupSize - 1) / kGroupSize), groupsY = GLuint((height + kGroupSize - 1) / kGroupSize);
+    for (int first = 0; first < samples; first += perDispatch) {
+      header.size[2] = first;
+      header.size[3] = std::min(perDispatch, samples - first);
+      header.seed[3] = first == 0 ? 1u : 0u;  // the first dispatch also writes the label planes and clears the sums
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kParams]);
+      g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, &header);
+      g.glDispatchCompute(groupsX, groupsY, 1);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    if (m.denoise) m.runDenoiser(width, height, samples, groupsX, groupsY);
+    m.film.resize(pixels);
+    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
+    g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels * sizeof(FilmPixel)), m.film.data());
+    const GLenum error = g.glGetError();
+    if (error == GL_OUT_OF_MEMORY) throw GpuUnavailable("GPU path tracer: out of GPU memory while tracing");
+    if (error != GL_NO_ERROR) throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while tracing");
+    const auto traceEnd = std::chrono::steady_clock::now();
+
+    out.width = width;
+    out.height = height;
+    out.radiance.resize(3 * pixels);
+    out.albedo.resize(3 * pixels);
+    out.normal.resize(3 * pixels);
+    out.depth.resize(pixels);
+    out.instance.resize(pixels);
+    PathTraceStats stats;
+    for (size_t p = 0; p < pixels; ++p) {
+      const FilmPixel& f = m.film[p];
+      for (int c = 0; c < 3; ++c) {
+        out.radiance[3 * p + size_t(c)] = m.denoise ? m.denoised[4 * p + size_t(c)] : f.sum[c] / float(samples);
+        out.albedo[3 * p + size_t(c)] = f.albedo[c];
+        out.normal[3 * p + size_t(c)] = f.normalDepth[c];
+      }
+      out.depth[p] = f.normalDepth[3];
+      out.instance[p] = f.rays[3];
+      stats.rays += uint64_t(f.rays[0]) | (uint64_t(f.rays[1]) << 32);
+      stats.cameraRays += f.rays[2];
+      stats.droppedSamples += uint64_t(f.sum[3]);
+    }
+    stats.samples = uint64_t(pixels) * uint64_t(samples);
+    stats.seconds = std::chrono::duration<double>(traceEnd - traceStart).count();
+    stats.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
+    stats.threads = 0;
+    m.stats = stats;
+  });
 }
 
 }  // namespace sdg

@@ -43,8 +43,9 @@ class GpuPathTracer {
   GpuPathTracer(const GpuPathTracer&) = delete;
   GpuPathTracer& operator=(const GpuPathTracer&) = delete;
 
-  // As PathTracer::render. Callable from any one thread at a time: the
-  // context is made current for the call and the thread's own restored.
+  // As PathTracer::render. Callable from any one thread at a time; the GL
+  // work runs on the context's own thread (gl_compute.h), so the caller's
+  // current context (the rasterizer's) is never touched.
   void render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
               PathTracedFrame& out);
 
