@@ -100,9 +100,8 @@ struct GpuPathTracer::Impl {
   int samplesPerDispatch = 0;
   std::optional<DenoiseSettings> denoise;
   GLuint denoiseProgram = 0;
-  GLuint denoiseWork = 0;  // five vec4 planes: illumination A, B, (gradient, noise, id), output, guides
+  GLuint denoiseWork = 0;  // four vec4 planes: illumination A, B, (gradient, noise, id), guides; never read back
   size_t denoiseCapacity = 0;
-  std::vector<float> denoised;  // the output plane, read back
 
   const GlComputeApi& gl() const { return context->gl(); }
 
@@ -177,7 +176,7 @@ struct GpuPathTracer::Impl {
       denoiseProgram = build(parts, 1, "denoising");
       g.glGenBuffers(1, &denoiseWork);
     }
-    const size_t pixels = size_t(width) * size_t(height), bytes = 5 * pixels * 4 * sizeof(float);
+    const size_t pixels = size_t(width) * size_t(height), bytes = 4 * pixels * 4 * sizeof(float);
     g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, denoiseWork);
     if (bytes > denoiseCapacity) {
       g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
@@ -199,17 +198,13 @@ struct GpuPathTracer::Impl {
       set("iteration", iteration);
       set("source", source);
       g.glDispatchCompute(groupsX, groupsY, 1);
-      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     };
     pass(0, 0, 0);
     pass(1, 0, 0);
     int source = 0;
     for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) pass(2, i, source);
     pass(3, 0, source);
-    g.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    denoised.resize(4 * pixels);
-    g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(3 * pixels * 4 * sizeof(float)),
-                         GLsizeiptr(pixels * 4 * sizeof(float)), denoised.data());
     // The tracer's bindings again for the next frame (binding 2 is its node buffer).
     g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodes, buffers[kNodes]);
   }
@@ -356,7 +351,7 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
     for (size_t p = 0; p < pixels; ++p) {
       const FilmPixel& f = m.film[p];
       for (int c = 0; c < 3; ++c) {
-        out.radiance[3 * p + size_t(c)] = m.denoise ? m.denoised[4 * p + size_t(c)] : f.sum[c] / float(samples);
+        out.radiance[3 * p + size_t(c)] = m.denoise ? f.sum[c] : f.sum[c] / float(samples);  // denoised: the radiance itself
         out.albedo[3 * p + size_t(c)] = f.albedo[c];
         out.normal[3 * p + size_t(c)] = f.normalDepth[c];
       }

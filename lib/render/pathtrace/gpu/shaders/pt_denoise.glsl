@@ -4,7 +4,9 @@
 // run on the tracer's film before it is read back. One pass per dispatch:
 // 0 prepares (illumination, depth gradient), 1 estimates the noise, 2
 // filters once (from region `source` to the other), 3 remodulates into the
-// output region. Each invocation writes its own pixel only.
+// film's sum (which then holds the radiance itself, not a sum of samples),
+// so the work planes never leave the device. Each invocation writes its own
+// pixel only.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 struct FilmPixel {
@@ -13,10 +15,9 @@ struct FilmPixel {
   vec4 normalDepth;
   uvec4 rays;  // w: the instance id
 };
-layout(std430, binding = 1) readonly buffer Film { FilmPixel film[]; };
-// Five regions of width * height: illumination A, illumination B, (depth
-// gradient x, y, noise, instance id), the output radiance, the guides
-// (normal, depth). Pass 0 copies the guides out of the film, so the taps of
+layout(std430, binding = 1) buffer Film { FilmPixel film[]; };
+// Four regions of width * height: illumination A, illumination B, (depth
+// gradient x, y, noise, instance id), the guides (normal, depth). Pass 0 copies the guides out of the film, so the taps of
 // the later passes read this buffer alone.
 layout(std430, binding = 2) buffer Work { vec4 work[]; };
 
@@ -56,7 +57,7 @@ void main() {
     float gy = gentlerDifference(y > 0 ? z - film[p - uint(width)].normalDepth.w : kInfinity,
                                  y + 1 < height ? film[p + uint(width)].normalDepth.w - z : kInfinity);
     work[2u * n + p] = vec4(gx, gy, 0.0, float(film[p].rays.w));  // ids are exact as floats below 2^24
-    work[4u * n + p] = film[p].normalDepth;
+    work[3u * n + p] = film[p].normalDepth;
   } else if (pass_ == 1) {
     float sum = 0.0, sum2 = 0.0;
     int count = 0;
@@ -64,7 +65,7 @@ void main() {
     for (int qy = max(0, y - 2); qy <= min(height - 1, y + 2); ++qy)
       for (int qx = max(0, x - 2); qx <= min(width - 1, x + 2); ++qx) {
         uint q = uint(qy) * uint(width) + uint(qx);
-        if (!hasSurface(work[4u * n + q]) || work[2u * n + q].w != id) continue;
+        if (!hasSurface(work[3u * n + q]) || work[2u * n + q].w != id) continue;
         float l = luminance(work[q].xyz);
         sum += l;
         sum2 += l * l;
@@ -75,7 +76,7 @@ void main() {
   } else if (pass_ == 2) {
     uint from = uint(source) * n, to = uint(1 - source) * n;
     vec3 cp = work[from + p].xyz;
-    vec4 guide = work[4u * n + p];
+    vec4 guide = work[3u * n + p];
     if (!hasSurface(guide)) {
       work[to + p] = vec4(cp, 0.0);
       return;
@@ -101,7 +102,7 @@ void main() {
         float weight = kKernel[kx + 2] * kKernel[ky + 2];
         if (q != p) {
           if (work[2u * n + q].w != id) continue;
-          vec4 nq = work[4u * n + q];
+          vec4 nq = work[3u * n + q];
           float cosine = dot(np, nq.xyz);
           float dz = abs(nq.w - zp);
           if (!(cosine > 0.0) || !finite(dz)) continue;
@@ -116,6 +117,6 @@ void main() {
     }
     work[to + p] = vec4(sum / weightSum, 0.0);
   } else {
-    work[3u * n + p] = vec4(work[uint(source) * n + p].xyz * divisor(film[p].albedo.xyz), 0.0);
+    film[p].sum.xyz = work[uint(source) * n + p].xyz * divisor(film[p].albedo.xyz);
   }
 }
