@@ -26,6 +26,9 @@ done
 for spp in 16 64 256; do
   "$build/tools/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 $spp "$cores" denoise >> "$lines"
 done
+# The denoiser's block bias and MAE at 4 samples against 256 samples of the
+# same tracer (the Cornell box, 128 x 128, 3 seeds; docs/performance.md).
+"$build/tools/sdg_denoise_quality" scenes/examples/cornell_box.yaml 128 128 4 256 "$cores" 3 >> "$lines"
 rm -rf "$stage"
 # Steady state of the demo scene as a dataset run: 600 frames at 512 x 512,
 # 5 runs per writer configuration. Steady state is the frames over the time

@@ -79,6 +79,8 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
   l.direction = (l.worldRotation * -Vec3d::UnitZ()).normalized();
   const float scale = prim.getFloat("inputs:intensity") * std::exp2(prim.getFloat("inputs:exposure"));
   l.radiance = prim.value("inputs:color")->get<Vec3f>() * scale;
+  l.diffuse = prim.getFloat("inputs:diffuse");
+  l.specular = prim.getFloat("inputs:specular");
   switch (prim.type()) {
     case PrimType::DistantLight:
       l.kind = LightKind::Distant;
@@ -87,6 +89,7 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
     case PrimType::SphereLight:
       l.kind = LightKind::Sphere;
       l.radius = prim.getFloat("inputs:radius");  // treatAsPoint keeps the power of this radius
+      l.treatAsPoint = prim.getBool("treatAsPoint");
       break;
     case PrimType::RectLight:
       l.kind = LightKind::Rect;
@@ -111,6 +114,21 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
       if (stage.metadata().upAxis == "Z")
         l.worldRotation = l.worldRotation * Eigen::AngleAxisd(M_PI / 2, Vec3d::UnitX()).toRotationMatrix();
       break;
+  }
+  // USD's inputs:normalize: the radiance over the emitting area, so the
+  // power no longer follows the size. A distant light's intensity already
+  // is its irradiance whatever its angle, and a dome has no area: neither
+  // changes.
+  if (prim.getBool("inputs:normalize")) {
+    float area = 0.0f;
+    switch (l.kind) {
+      case LightKind::Rect: area = l.width * l.height; break;
+      case LightKind::Disk: area = float(M_PI) * l.radius * l.radius; break;
+      case LightKind::Sphere: area = 4.0f * float(M_PI) * l.radius * l.radius; break;
+      case LightKind::Cylinder: area = 2.0f * float(M_PI) * l.radius * l.length; break;
+      default: break;
+    }
+    if (area > 0.0f) l.radiance /= area;
   }
   return l;
 }

@@ -67,7 +67,9 @@ enum class LightKind { Distant, Sphere, Rect, Disk, Cylinder, Dome };
 struct RenderLight {
   std::string path;
   LightKind kind = LightKind::Distant;
-  Vec3f radiance{1, 1, 1};  // intensity * 2^exposure * color
+  // intensity * 2^exposure * color; with inputs:normalize, divided by the
+  // emitting area (rect, disk, sphere, cylinder), so resizing keeps the power.
+  Vec3f radiance{1, 1, 1};
   Vec3d position = Vec3d::Zero();
   Vec3d direction = -Vec3d::UnitZ();  // the light's local -Z in world space
   // A dome's frame in the world: its texture's pole (+Y in the lat-long
@@ -77,6 +79,10 @@ struct RenderLight {
   float radius = 0.0f;  // sphere, disk, cylinder
   float width = 0.0f, height = 0.0f, length = 0.0f;
   float angle = 0.0f;   // distant: angular diameter (degrees)
+  // inputs:diffuse and inputs:specular: multipliers of the light's diffuse
+  // and specular response (applied per lobe by both renderers).
+  float diffuse = 1.0f, specular = 1.0f;
+  bool treatAsPoint = false;  // sphere: a point of the same power (hard shadows)
   std::string texture;  // dome
 };
 

@@ -90,14 +90,19 @@ PbrBsdf::PbrBsdf(const PbrMaterial& material) {
   alpha_ = std::max(roughness * roughness, kMinAlpha);
 }
 
-Vec3f PbrBsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
-  if (wo.z() <= kMinCos || wi.z() <= kMinCos) return Vec3f::Zero();
+BsdfLobes PbrBsdf::evalLobes(const Vec3f& wo, const Vec3f& wi) const {
+  if (wo.z() <= kMinCos || wi.z() <= kMinCos) return {Vec3f::Zero(), Vec3f::Zero()};
   const Vec3f diffuse = diffuseColor_ * (wi.z() / kPi);
   // f = F D G2 / (4 cos θo cos θi); times cos θi.
   const Vec3f h = (wo + wi).normalized();
   const float g2 = 1.0f / (1.0f + smithLambda(wo, alpha_) + smithLambda(wi, alpha_));
   const Vec3f specular = schlickFresnel(f0_, f90_, wo.dot(h)) * (ggxDistribution(h, alpha_) * g2 / (4.0f * wo.z()));
-  return diffuse + specular;
+  return {diffuse, specular};
+}
+
+Vec3f PbrBsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
+  const BsdfLobes lobes = evalLobes(wo, wi);
+  return lobes.diffuse + lobes.specular;
 }
 
 float PbrBsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {

@@ -52,12 +52,21 @@ struct BsdfSample {
   bool specular;      // drawn from the GGX lobe (never a delta: pdf is finite)
 };
 
+// f cos θi of each lobe apart: a light's inputs:diffuse and inputs:specular
+// scale them apart (pt_lights.h).
+struct BsdfLobes {
+  Vec3f diffuse;
+  Vec3f specular;
+};
+
 class PbrBsdf {
  public:
   explicit PbrBsdf(const PbrMaterial& material);
 
   // f(wo, wi) cos θi.
   Vec3f eval(const Vec3f& wo, const Vec3f& wi) const;
+  // The same, by lobe (eval() is their sum).
+  BsdfLobes evalLobes(const Vec3f& wo, const Vec3f& wi) const;
   // The solid-angle density with which sample() returns wi: one-sample MIS
   // of the two lobes, each picked with the probability specularProbability().
   float pdf(const Vec3f& wo, const Vec3f& wi) const;

@@ -20,7 +20,8 @@ void finishTracedColor(const RenderSettings& settings, Denoiser& denoiser, PathT
                        bool keepRadiance) {
   if (settings.denoise) {
     const DenoiseInputs in{frame.width, frame.height, frame.radiance.data(), frame.albedo.data(),
-                           frame.normal.data(), frame.depth.data(), frame.instance.data()};
+                           frame.normal.data(), frame.depth.data(), frame.instance.data(),
+                           frame.variance.empty() ? nullptr : frame.variance.data()};
     denoiser.run(in, frame.radiance.data());
   }
   passes.rgba.resize(size_t(frame.width) * size_t(frame.height) * 4);

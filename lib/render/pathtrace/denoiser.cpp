@@ -55,6 +55,12 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
   illuminationB_.resize(3 * pixels);
   depthGradient_.resize(2 * pixels);
   noise_.resize(pixels);
+  if (in.variance) {
+    pixelVariance_.resize(pixels);
+    varianceA_.resize(pixels);
+    varianceB_.resize(pixels);
+    guide_.resize(pixels);
+  }
 
   const unsigned wanted =
       settings_.threads != 0 ? settings_.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -70,10 +76,13 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
     sync();
     float* source = illuminationA_.data();
     float* target = illuminationB_.data();
+    float* varianceSource = in.variance ? varianceA_.data() : nullptr;
+    float* varianceTarget = in.variance ? varianceB_.data() : nullptr;
     for (int iteration = 0; iteration < settings_.iterations; ++iteration) {
-      filterRows(in, iteration, source, target, rowBegin, rowEnd);
+      filterRows(in, iteration, source, target, varianceSource, varianceTarget, rowBegin, rowEnd);
       sync();
       std::swap(source, target);
+      std::swap(varianceSource, varianceTarget);
     }
     remodulateRows(in, source, out, rowBegin, rowEnd);
   };
@@ -96,6 +105,15 @@ void Denoiser::prepareRows(const DenoiseInputs& in, int rowBegin, int rowEnd) {
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
       for (size_t c = 3 * p; c < 3 * p + 3; ++c) illuminationA_[c] = in.radiance[c] / demodulationDivisor(in.albedo[c]);
+      if (in.variance) {
+        // Demodulation scales the luminance by about its ratio here; where
+        // the radiance is black, by the divisors' luminance.
+        const float radianceL = luminance(in.radiance + 3 * p), illuminationL = luminance(illuminationA_.data() + 3 * p);
+        const float divisors[3] = {demodulationDivisor(in.albedo[3 * p]), demodulationDivisor(in.albedo[3 * p + 1]),
+                                   demodulationDivisor(in.albedo[3 * p + 2])};
+        const float scale = radianceL > 0.0f ? illuminationL / radianceL : 1.0f / luminance(divisors);
+        pixelVariance_[p] = in.variance[p] * scale * scale;
+      }
       const float z = in.depth[p];
       depthGradient_[2 * p] = gentlerDifference(x > 0 ? z - in.depth[p - 1] : kInfinity,
                                                 x + 1 < w ? in.depth[p + 1] - z : kInfinity);
@@ -109,6 +127,28 @@ void Denoiser::prepareRows(const DenoiseInputs& in, int rowBegin, int rowEnd) {
 // estimate, which a single frame without per-pixel sample variance has.
 void Denoiser::estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowEnd) {
   const int w = in.width, h = in.height;
+  if (in.variance) {
+    // SVGF: the per-pixel variance blurred by a 3 x 3 Gaussian on the
+    // pixel's instance (a 4-sample variance alone is itself very noisy).
+    constexpr float kGauss[3] = {0.25f, 0.5f, 0.25f};
+    for (int y = rowBegin; y < rowEnd; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t p = size_t(y) * size_t(w) + size_t(x);
+        float sum = 0.0f, guide = 0.0f, weights = 0.0f;
+        for (int qy = std::max(0, y - 1); qy <= std::min(h - 1, y + 1); ++qy)
+          for (int qx = std::max(0, x - 1); qx <= std::min(w - 1, x + 1); ++qx) {
+            const size_t q = size_t(qy) * size_t(w) + size_t(qx);
+            if (q != p && (!hasSurface(in, q) || (in.instance && in.instance[q] != in.instance[p]))) continue;
+            const float weight = kGauss[qx - x + 1] * kGauss[qy - y + 1];
+            sum += weight * pixelVariance_[q];
+            guide += weight * luminance(illuminationA_.data() + 3 * q);
+            weights += weight;
+          }
+        varianceA_[p] = sum / weights;
+        guide_[p] = guide / weights;
+      }
+    return;
+  }
   for (int y = rowBegin; y < rowEnd; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
@@ -127,29 +167,38 @@ void Denoiser::estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowE
     }
 }
 
-void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* source, float* target, int rowBegin,
-                          int rowEnd) const {
+void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* source, float* target,
+                          const float* varianceSource, float* varianceTarget, int rowBegin, int rowEnd) const {
   const int w = in.width, h = in.height;
   const int step = 1 << iteration;
-  // Each pass leaves less noise: the scale shrinks with it.
-  const float sigmaColor = settings_.sigmaColor * std::pow(0.5f, 0.5f * float(iteration));
+  // Without a carried variance each pass is assumed to leave half the
+  // noise's variance: the scale shrinks with it.
+  const float sigmaColor =
+      varianceSource ? settings_.sigmaColor : settings_.sigmaColor * std::pow(0.5f, 0.5f * float(iteration));
   for (int y = rowBegin; y < rowEnd; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
       const float* cp = source + 3 * p;
       if (!hasSurface(in, p)) {
         std::copy(cp, cp + 3, target + 3 * p);
+        if (varianceSource) varianceTarget[p] = varianceSource[p];
         continue;
       }
       const float* np = in.normal + 3 * p;
       const float zp = in.depth[p];
       const float gx = depthGradient_[2 * p], gy = depthGradient_[2 * p + 1];
-      const float luminanceP = luminance(cp);
+      // The first pass compares the pixels' 3 x 3 means, not their single
+      // noisy values: weights that favour values near a noisy centre pull
+      // skewed path-tracing noise (rare bright samples) toward its mode,
+      // darkening the image; later passes see filtered values already.
+      const bool guided = varianceSource && iteration == 0;
+      const float luminanceP = guided ? guide_[p] : luminance(cp);
       // A floor of 1 % of the pixel's own level, so noise-free regions
       // still stop at real edges instead of dividing by zero.
-      const float colorScale = sigmaColor * noise_[p] + 0.01f * std::abs(luminanceP) + 1e-6f;
+      const float noise = varianceSource ? std::sqrt(varianceSource[p]) : noise_[p];
+      const float colorScale = sigmaColor * noise + 0.01f * std::abs(luminanceP) + 1e-6f;
       float sum[3] = {0.0f, 0.0f, 0.0f};
-      float weightSum = 0.0f;
+      float weightSum = 0.0f, varianceSum = 0.0f;
       for (int ky = -2; ky <= 2; ++ky) {
         const int qy = y + ky * step;
         if (qy < 0 || qy >= h) continue;
@@ -167,16 +216,18 @@ void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* s
             if (!(cosine > 0.0f) || !std::isfinite(dz)) continue;
             const float expectedDz = std::abs(gx * float(qx - x) + gy * float(qy - y));
             const float depthScale = settings_.sigmaDepth * expectedDz + kRelativeDepthTolerance * std::abs(zp);
-            const float colorDistance = std::abs(luminance(cq) - luminanceP);
+            const float colorDistance = std::abs((guided ? guide_[q] : luminance(cq)) - luminanceP);
             weight *= std::pow(cosine, settings_.sigmaNormal) *
                       std::exp(-dz / std::max(depthScale, std::numeric_limits<float>::min())) *
                       std::exp(-colorDistance / colorScale);
           }
           for (int c = 0; c < 3; ++c) sum[c] += weight * cq[c];
           weightSum += weight;
+          if (varianceSource) varianceSum += weight * weight * varianceSource[q];
         }
       }
       for (int c = 0; c < 3; ++c) target[3 * p + size_t(c)] = sum[c] / weightSum;
+      if (varianceSource) varianceTarget[p] = varianceSum / (weightSum * weightSum);
     }
 }
 

@@ -175,6 +175,9 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
   // The previous vertex, for the MIS weight of light that a BSDF sample finds.
   float bsdfPdf = 0.0f;
   Vec3f previousPoint = Vec3f::Zero(), previousNormal = Vec3f::Zero();
+  // Its BSDF's lobes along the sampled direction, kept only where a light
+  // scales its diffuse or specular response.
+  BsdfLobes previousLobes{Vec3f::Zero(), Vec3f::Zero()};
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
     const bool onSurface = scene.intersect(ray, cutOuts, hit);
@@ -189,13 +192,16 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     if (depth > 0 && lights.intersect(toLights, lightHit)) {
       const float weight =
           powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint, previousNormal, ray.direction));
-      radiance += beta.cwiseProduct(lightHit.radiance) * weight;
+      Vec3f emitted = lightHit.radiance;
+      if (lights.anyLobeMultiplier()) emitted = emitted.cwiseProduct(lights.responseScale(lightHit.light, previousLobes));
+      radiance += beta.cwiseProduct(emitted) * weight;
       break;
     }
     if (!onSurface) {
       // Camera rays (depth 0) see the sky unweighted.
       const float pdf = depth == 0 ? 0.0f : bsdfPdf;
-      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, pdf));
+      const BsdfLobes* lobes = depth > 0 && lights.anyLobeMultiplier() ? &previousLobes : nullptr;
+      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, pdf, lobes));
       break;
     }
     if (depth == maxBounces) break;
@@ -221,7 +227,7 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     LightSample light;
     if (lights.sample(g.position, surface.normal, uPick, uLight, light) && light.direction.dot(side) > 0.0f) {
       const Vec3f wiLocal = shading.toLocal(light.direction);
-      const Vec3f f = bsdf.eval(woLocal, wiLocal);
+      const Vec3f f = lights.response(light.light, bsdf.evalLobes(woLocal, wiLocal));
       if (f.maxCoeff() > 0.0f) {
         const PtRay shadow{origin, light.direction, 0.0f,
                            std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)};
@@ -242,6 +248,7 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     bsdfPdf = next->pdf;
     previousPoint = g.position;
     previousNormal = surface.normal;
+    if (lights.anyLobeMultiplier()) previousLobes = bsdf.evalLobes(woLocal, next->wi);
     if (depth >= kRouletteDepth) {
       // pbrt-v4: continue with the probability of the throughput's largest
       // component (when below 1), and weigh the survivors up.
@@ -315,6 +322,7 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
   out.normal.assign(3 * pixels, 0.0f);
   out.depth.assign(pixels, kInf);
   out.instance.assign(pixels, 0u);
+  out.variance.assign(pixels, 0.0f);
 
   const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
   const int threads = std::min(settings_.threads, tilesX * tilesY);
@@ -327,7 +335,7 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
       for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
         const size_t pixel = size_t(y) * size_t(width) + size_t(x);
         PixelSampler sampler(frameSeed, uint32_t(x), uint32_t(y));
-        double sum[3] = {0, 0, 0};
+        double sum[3] = {0, 0, 0}, luminance2 = 0;
         for (int s = 0; s < settings_.samples; ++s) {
           sampler.startSample(uint32_t(s));
           const Vec2f jitter = sampler.next2D();
@@ -338,8 +346,13 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
             continue;
           }
           for (int c = 0; c < 3; ++c) sum[c] += L[c];
+          const double l = 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
+          luminance2 += l * l;
         }
-        for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[c] / settings_.samples);
+        const double n = settings_.samples;
+        for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[c] / n);
+        const double mean = (0.2126 * sum[0] + 0.7152 * sum[1] + 0.0722 * sum[2]) / n;
+        out.variance[pixel] = n > 1 ? float(std::max(0.0, luminance2 / n - mean * mean) / (n - 1)) : 0.0f;
         traceLabels(frame, camera.ray(x + 0.5, y + 0.5), eye, pixel, out);
         count.cameraRays += uint64_t(settings_.samples) + 1;
         ++count.rays;

@@ -50,6 +50,9 @@ struct PathTracedFrame {  // rows top to bottom, like FramePasses
   std::vector<float> normal;       // first-hit shading normal (xyz), facing the camera; 0 for background
   std::vector<float> depth;        // first-hit distance from the camera's position, scene units; +inf for background
   std::vector<uint32_t> instance;  // first-hit RenderItem::instanceId; 0 background
+  // Per pixel: the variance of the radiance's mean luminance (the samples'
+  // variance over their count), the denoiser's per-pixel noise estimate.
+  std::vector<float> variance;
 };
 
 // What the last render() did, for benchmarks.

@@ -73,6 +73,7 @@ void PtLights::build(const RenderList& list, const Eigen::AlignedBox3f& sceneBou
                      const std::function<const PtDomeMap*(const RenderLight&)>& domeMap) {
   lights_.clear();
   pickCdf_.clear();
+  anyLobeMultiplier_ = false;
   const float sceneRadius = sceneBounds.isEmpty() ? 1.0f : std::max(0.5f * sceneBounds.diagonal().norm(), 1e-3f);
   std::vector<double> power;
   Light dome;
@@ -81,6 +82,13 @@ void PtLights::build(const RenderList& list, const Eigen::AlignedBox3f& sceneBou
   for (const RenderLight& in : list.lights) {
     if (in.kind == LightKind::Dome) {
       // The first dome with a texture shows it; the others add their colour.
+      // The one dome light takes the first dome's diffuse and specular
+      // multipliers, the textured one's where there is one.
+      if (!anyDome || (!dome.map && !in.texture.empty())) {
+        dome.diffuse = in.diffuse;
+        dome.specular = in.specular;
+        anyLobeMultiplier_ = anyLobeMultiplier_ || in.diffuse != 1.0f || in.specular != 1.0f;
+      }
       anyDome = true;
       if (!dome.map && !in.texture.empty()) {
         dome.map = domeMap(in);
@@ -104,12 +112,16 @@ void PtLights::build(const RenderList& list, const Eigen::AlignedBox3f& sceneBou
     l.width = in.width;
     l.height = in.height;
     l.length = in.length;
+    l.diffuse = in.diffuse;
+    l.specular = in.specular;
+    anyLobeMultiplier_ = anyLobeMultiplier_ || in.diffuse != 1.0f || in.specular != 1.0f;
     const float L = std::max(luminance(l.radiance), 0.0f);
     double phi = 0;
     switch (in.kind) {
       case LightKind::Sphere:
         l.area = 4.0f * kPi * l.radius * l.radius;
         phi = double(L) * kPi * l.area;
+        l.point = l.delta = in.treatAsPoint;
         break;
       case LightKind::Rect:
         l.area = l.width * l.height;
@@ -181,6 +193,16 @@ bool PtLights::sample(const Vec3f& p, const Vec3f& n, float uPick, const Vec2f& 
       const Vec3f toCentre = l.position - p;
       const float d2 = toCentre.squaredNorm();
       const float r2 = l.radius * l.radius;
+      if (l.point) {  // intensity L pi r^2: the irradiance it gives at distance d, head-on
+        if (!(d2 > 0.0f)) return false;
+        const float d = std::sqrt(d2);
+        out.direction = toCentre / d;
+        out.distance = d;
+        out.radiance = l.radiance * (kPi * r2 / d2);
+        out.pdf = l.pick;
+        out.delta = true;
+        break;
+      }
       if (!(d2 > r2)) return false;  // inside the light: it emits outward only
       const float d = std::sqrt(d2);
       const float sin2Max = r2 / d2;
@@ -267,7 +289,7 @@ float PtLights::densityOf(const Light& l, const Vec3f& p, const Vec3f& n, const 
     case LightKind::Sphere: {
       const Vec3f toCentre = l.position - p;
       const float d2 = toCentre.squaredNorm(), r2 = l.radius * l.radius;
-      if (!(d2 > r2)) return 0.0f;
+      if (l.point || !(d2 > r2)) return 0.0f;
       const float sin2Max = r2 / d2;
       const float oneMinusCosMax = sin2Max / (1.0f + std::sqrt(std::max(0.0f, 1.0f - sin2Max)));
       return 1.0f / (2.0f * kPi * oneMinusCosMax);
@@ -311,6 +333,7 @@ bool PtLights::hitShape(const Light& l, const PtRay& ray, float& t) const {
   const Vec3f& d = ray.direction;
   switch (l.kind) {
     case LightKind::Sphere: {
+      if (l.point) return false;
       // From outside only: the near root is the emitting side.
       const Vec3f oc = o - l.position;
       const float r2 = l.radius * l.radius;
@@ -378,9 +401,22 @@ bool PtLights::blocks(const PtRay& ray, int except) const {
   return false;
 }
 
-Vec3f PtLights::escaped(const Vec3f& p, const Vec3f& n, const Vec3f& wi, float bsdfPdf) const {
+Vec3f PtLights::response(int light, const BsdfLobes& f) const {
+  const Light& l = lights_[size_t(light)];
+  return l.diffuse * f.diffuse + l.specular * f.specular;
+}
+
+Vec3f PtLights::responseScale(int light, const BsdfLobes& f) const {
+  const Vec3f sum = f.diffuse + f.specular, weighted = response(light, f);
+  Vec3f scale;
+  for (int c = 0; c < 3; ++c) scale[c] = sum[c] > 0.0f ? weighted[c] / sum[c] : 1.0f;
+  return scale;
+}
+
+Vec3f PtLights::escaped(const Vec3f& p, const Vec3f& n, const Vec3f& wi, float bsdfPdf, const BsdfLobes* lobes) const {
   Vec3f sum = Vec3f::Zero();
-  for (const Light& l : lights_) {
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    const Light& l = lights_[i];
     Vec3f radiance;
     if (l.kind == LightKind::Dome) {
       radiance = domeRadiance(l, wi);
@@ -391,6 +427,8 @@ Vec3f PtLights::escaped(const Vec3f& p, const Vec3f& n, const Vec3f& wi, float b
       continue;
     }
     const float weight = bsdfPdf > 0.0f ? powerHeuristic(bsdfPdf, l.pick * densityOf(l, p, n, wi)) : 1.0f;
+    if (lobes && (l.diffuse != 1.0f || l.specular != 1.0f))
+      radiance = radiance.cwiseProduct(responseScale(int(i), *lobes));
     sum += weight * radiance;
   }
   return sum;

@@ -26,6 +26,15 @@
 //   (EnvironmentSampler, whose texels the radiance is read from) mixed, by
 //   power, with a cosine lobe around the shading normal for the uniform part.
 //
+// - A SphereLight with treatAsPoint is a point of the same power (radiant
+//   intensity L pi r^2, the rasterizer's): a delta light, hard shadows, no
+//   shape for rays to hit.
+//
+// A light's inputs:diffuse and inputs:specular scale what it sends through
+// the BSDF's diffuse and specular lobes apart (response()), at every
+// vertex: next-event estimation and BSDF samples that find it alike.
+// inputs:normalize is in the radiance already (render_list.cpp).
+//
 // Sizes are the lights' own attributes, positions and frames their world
 // transforms without scale, as in the rasterizer.
 //
@@ -41,6 +50,7 @@
 #include <functional>
 #include <vector>
 
+#include "render/pathtrace/bsdf.h"
 #include "render/pathtrace/embree_scene.h"
 #include "render/pathtrace/environment_sampler.h"
 #include "render/render_list.h"
@@ -86,6 +96,8 @@ class PtLights {
     Vec3f toLight = Vec3f::UnitZ();
     float oneMinusCos = 0, sin2Half = 0;
     bool delta = false;
+    bool point = false;  // a sphere light with treatAsPoint
+    float diffuse = 1, specular = 1;  // inputs:diffuse, inputs:specular
     // Dome: the textured map (may be null), its scale and frame, the uniform part.
     const PtDomeMap* map = nullptr;
     Eigen::Matrix3f domeFromWorld = Eigen::Matrix3f::Identity();
@@ -116,7 +128,17 @@ class PtLights {
   // scene from p (shading normal n) in direction wi. With bsdfPdf > 0 each
   // light's share is weighted by the power heuristic against its light
   // sampling density; with bsdfPdf <= 0 (camera rays) it is unweighted.
-  Vec3f escaped(const Vec3f& p, const Vec3f& n, const Vec3f& wi, float bsdfPdf) const;
+  // `lobes`: the BSDF's lobes along wi at p, for the lights' diffuse and
+  // specular multipliers (null: camera rays, no surface).
+  Vec3f escaped(const Vec3f& p, const Vec3f& n, const Vec3f& wi, float bsdfPdf, const BsdfLobes* lobes = nullptr) const;
+
+  // f cos as light `light` sees it: diffuse x f_d + specular x f_s (the
+  // plain sum where both multipliers are 1).
+  Vec3f response(int light, const BsdfLobes& f) const;
+  // response() over f_d + f_s: the factor on light that a BSDF sample finds.
+  Vec3f responseScale(int light, const BsdfLobes& f) const;
+  // Whether any light has a diffuse or specular multiplier other than 1.
+  bool anyLobeMultiplier() const { return anyLobeMultiplier_; }
 
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<float>& pickCdf() const { return pickCdf_; }
@@ -128,6 +150,7 @@ class PtLights {
 
   std::vector<Light> lights_;
   std::vector<float> pickCdf_;  // lights_.size() + 1 entries, 0 .. 1
+  bool anyLobeMultiplier_ = false;
 };
 
 // The power heuristic with exponent 2 (Veach 1997, 9.2.4) for a strategy

@@ -75,6 +75,7 @@ SurfaceMaterial resolveSurfaceMaterial(const RenderItem& item, const MeshPart& p
     m.opacityConstant = prim.opacityConstant;
     m.opacityCutoff = prim.opacityCutoff;
     m.normalScale = prim.normalScale;
+    m.specularLevel = prim.specularLevel;
     m.triplanar = prim.projectUvw;
   }
   // The texture placement is the prim's in both cases (it travels per instance).
@@ -132,6 +133,7 @@ ShadedSurface shadeSurface(const SurfaceMaterial& m, const SurfaceGeometry& g, c
   s.material.baseColor = s.albedo;
   s.material.roughness = std::clamp(roughness, 0.0f, 1.0f);
   s.material.metallic = std::clamp(metallic, 0.0f, 1.0f);
+  s.material.specularLevel = m.specularLevel;
   if (m.normalMap) n = mappedNormal(m, g, n);
   // A mapped (or strongly interpolated) normal can turn away from the
   // viewer, where the BSDF is black: tip it back until the viewer is just

@@ -39,6 +39,7 @@ struct SurfaceMaterial {
   OpacitySource opacity = OpacitySource::None;    // after the rasterizer's fallbacks
   float opacityConstant = 1.0f, opacityCutoff = 0.5f;
   float normalScale = 1.0f;
+  float specularLevel = 0.5f;  // OmniPBR's; a mesh file's part material keeps the default, as in the rasterizer
   bool triplanar = false;
   Vec2f textureScale{1.0f, 1.0f};
   float cosRotate = 1.0f, sinRotate = 0.0f;

@@ -75,6 +75,7 @@ namespace sdg {
   X(PFNGLUNIFORM1FPROC, glUniform1f)                                                          \
   X(PFNGLUNIFORM2FPROC, glUniform2f)                                                          \
   X(PFNGLUNIFORM3FPROC, glUniform3f)                                                          \
+  X(PFNGLUNIFORM2FVPROC, glUniform2fv)                                                        \
   X(PFNGLUNIFORM3FVPROC, glUniform3fv)                                                        \
   X(PFNGLUNIFORM4FVPROC, glUniform4fv)                                                        \
   X(PFNGLUNIFORM1FVPROC, glUniform1fv)                                                        \

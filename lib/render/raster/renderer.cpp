@@ -43,8 +43,8 @@ int lightTypeCode(LightKind kind) {
 
 // The scene shader's ADD_LIGHTS line gets one call per light, its type and
 // shadow slot as literals.
-void appendLightCall(std::string& calls, int index, int type, int shadowSlot) {
-  calls += " radiance += lightContribution(";
+void appendLightCall(std::string& calls, int index, int type, int shadowSlot, bool scaledLobes) {
+  calls += scaledLobes ? " radiance += lightContributionScaled(" : " radiance += lightContribution(";
   calls += std::to_string(index);
   calls += ", ";
   calls += std::to_string(type);
@@ -257,11 +257,13 @@ void Renderer::uploadFrameUniforms(const Uniforms& u) const {
   gl_.glUniform1f(u.uMetersPerUnit, f.metersPerUnit);
   gl_.glUniform1f(u.uExposureScale, settings_.exposureScale);
   gl_.glUniform3fv(u.uAmbient, 1, f.ambient);
+  gl_.glUniform3fv(u.uAmbientSpecular, 1, f.ambientSpecular);
   gl_.glUniform1f(u.uShadowTexel, f.shadowTexel);
   gl_.glUniform3fv(u.uLightRadiance, shaders::kMaxLights, f.radiance);
   gl_.glUniform3fv(u.uLightPosition, shaders::kMaxLights, f.position);
   gl_.glUniform3fv(u.uLightDirection, shaders::kMaxLights, f.direction);
   gl_.glUniform4fv(u.uLightParams, shaders::kMaxLights, f.params);
+  gl_.glUniform2fv(u.uLightResponse, shaders::kMaxLights, f.response);
   gl_.glUniformMatrix4fv(u.uShadowMatrix, 4, GL_FALSE, f.shadowMatrices);
   gl_.glUniform1i(u.uTexture, kBaseUnit);
   gl_.glUniform1i(u.uDome, kDomeSpecularUnit);
@@ -277,6 +279,7 @@ void Renderer::uploadFrameUniforms(const Uniforms& u) const {
     gl_.glUniformMatrix3fv(u.uDomeFromWorld, 1, GL_FALSE, f.domeFromWorld.data());
     gl_.glUniform1f(u.uDomeLod, f.domeLod);
     gl_.glUniform3fv(u.uDomeScale, 1, f.domeScale);
+    gl_.glUniform2fv(u.uDomeResponse, 1, f.domeResponse);
   }
 }
 
@@ -313,12 +316,19 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   gl_.glViewport(0, 0, w, h);
   // Domes: the first with a texture lights through it; others are uniform.
-  Vec3f ambient = Vec3f::Zero();
+  // The surfaces see each dome through its diffuse and specular multipliers;
+  // the background shows the dome itself.
+  Vec3f ambient = Vec3f::Zero(), ambientDiffuse = Vec3f::Zero(), ambientSpecular = Vec3f::Zero();
   const RenderLight* texturedDome = nullptr;
   for (const RenderLight& l : list.lights) {
     if (l.kind != LightKind::Dome) continue;
-    if (!texturedDome && !l.texture.empty()) texturedDome = &l;
-    else ambient += l.radiance;
+    if (!texturedDome && !l.texture.empty()) {
+      texturedDome = &l;
+    } else {
+      ambient += l.radiance;
+      ambientDiffuse += l.radiance * l.diffuse;
+      ambientSpecular += l.radiance * l.specular;
+    }
   }
   // The background shows the dome's colour through the same tone curve.
   float background[4] = {0, 0, 0, 1};
@@ -344,6 +354,7 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   std::fill(std::begin(f.position), std::end(f.position), 0.0f);
   std::fill(std::begin(f.direction), std::end(f.direction), 0.0f);
   std::fill(std::begin(f.params), std::end(f.params), 0.0f);
+  std::fill(std::begin(f.response), std::end(f.response), 1.0f);
   int count = 0;
   lightCalls_.assign("#define ADD_LIGHTS");
   for (size_t i = 0; i < list.lights.size() && count < shaders::kMaxLights; ++i) {
@@ -352,7 +363,9 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
     int shadowSlot = -1;
     for (size_t k = 0; k < shadowSlots_.size(); ++k)
       if (shadowSlots_[k].light == i) shadowSlot = int(k);
-    appendLightCall(lightCalls_, count, lightTypeCode(l.kind), shadowSlot);
+    appendLightCall(lightCalls_, count, lightTypeCode(l.kind), shadowSlot, l.diffuse != 1.0f || l.specular != 1.0f);
+    f.response[2 * count + 0] = l.diffuse;
+    f.response[2 * count + 1] = l.specular;
     for (int c = 0; c < 3; ++c) {
       f.radiance[3 * count + c] = l.radiance[c];
       f.position[3 * count + c] = float(l.position[c]);
@@ -382,7 +395,8 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
   for (int c = 0; c < 3; ++c) {
     f.eye[c] = float(eye[c]);
     f.forward[c] = float(forward[c]);
-    f.ambient[c] = ambient[c];
+    f.ambient[c] = ambientDiffuse[c];
+    f.ambientSpecular[c] = ambientSpecular[c];
   }
   f.metersPerUnit = float(list.metersPerUnit);
   f.shadowTexel = 1.0f / float(2 * shadowMapSize());
@@ -405,6 +419,8 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
     f.domeFromWorld = texturedDome->worldRotation.transpose().cast<float>();
     f.domeLod = float(d.specularLevels - 1);
     for (int c = 0; c < 3; ++c) f.domeScale[c] = texturedDome->radiance[c];
+    f.domeResponse[0] = texturedDome->diffuse;
+    f.domeResponse[1] = texturedDome->specular;
   }
   gl_.glActiveTexture(GL_TEXTURE0);
   frameVariants_.fill(nullptr);

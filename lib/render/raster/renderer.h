@@ -168,13 +168,13 @@ class Renderer {
   // What every scene program of a frame is given, set once per frame.
   struct FrameUniforms {
     Eigen::Matrix4f viewProjection;
-    float eye[3], forward[3], ambient[3];
+    float eye[3], forward[3], ambient[3], ambientSpecular[3];  // the untextured domes', per lobe
     float metersPerUnit = 1, shadowTexel = 0;
-    float radiance[3 * 16], position[3 * 16], direction[3 * 16], params[4 * 16];
+    float radiance[3 * 16], position[3 * 16], direction[3 * 16], params[4 * 16], response[2 * 16];
     float shadowMatrices[16 * 4];
     bool dome = false;
     Eigen::Matrix3f domeFromWorld;
-    float domeLod = 0, domeScale[3];
+    float domeLod = 0, domeScale[3], domeResponse[2] = {1, 1};
   };
   FrameUniforms frame_;
   // This frame's programs by ShadingVariant::index(), null until first used.

@@ -40,7 +40,7 @@ constexpr size_t kMaxCachedDomes = 8;
 
 namespace sdg {
 
-#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uBrdfLut) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeBackground) X(uDomeFromWorld) X(uDomeIrradiance) X(uDomeLod) X(uDomeScale) X(uExposureScale) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uMetallicMap) X(uMetersPerUnit) X(uNormalMap) X(uNormalScale) X(uOpacityConstant) X(uOpacityCutoff) X(uOpacityMap) X(uOrmMap) X(uPartBaseColor) X(uPartSurface) X(uRoughnessMap) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uSpecularLevel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
+#define SDG_SCENE_UNIFORMS(X) X(uAmbient) X(uAmbientSpecular) X(uBrdfLut) X(uCameraForward) X(uCameraPosition) X(uDome) X(uDomeBackground) X(uDomeFromWorld) X(uDomeIrradiance) X(uDomeLod) X(uDomeResponse) X(uDomeScale) X(uExposureScale) X(uLightDirection) X(uLightParams) X(uLightPosition) X(uLightRadiance) X(uLightResponse) X(uMetallicMap) X(uMetersPerUnit) X(uNormalMap) X(uNormalScale) X(uOpacityConstant) X(uOpacityCutoff) X(uOpacityMap) X(uOrmMap) X(uPartBaseColor) X(uPartSurface) X(uRoughnessMap) X(uShadowAtlas) X(uShadowMatrix) X(uShadowTexel) X(uSpecularLevel) X(uTexture) X(uUsePartMaterial) X(uViewProjection) X(uWorldFromClip)
 
 // Uniform locations, looked up once per program instead of per draw (the
 // sky program uses a few of the same names; the rest stay -1 for it).

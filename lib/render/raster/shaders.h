@@ -132,11 +132,14 @@ uniform float uSpecularLevel;  // OmniPBR's specular_level: a dielectric's F0 = 
 uniform float uOpacityConstant;
 uniform float uOpacityCutoff;
 uniform float uExposureScale;
-uniform vec3 uAmbient;
+uniform vec3 uAmbient;          // the untextured domes' radiance times their inputs:diffuse
+uniform vec3 uAmbientSpecular;  // ... times their inputs:specular
+uniform vec2 uDomeResponse;     // the textured dome's inputs:diffuse, inputs:specular
 uniform vec3 uLightRadiance[MAX_LIGHTS];
 uniform vec3 uLightPosition[MAX_LIGHTS];
 uniform vec3 uLightDirection[MAX_LIGHTS];
 uniform vec4 uLightParams[MAX_LIGHTS];
+uniform vec2 uLightResponse[MAX_LIGHTS];  // inputs:diffuse, inputs:specular (lightContributionScaled only)
 in vec4 vShadowCoord0;
 in vec4 vShadowCoord1;
 in vec4 vShadowCoord2;
@@ -216,8 +219,8 @@ float shadow(int slot) {
   return texture(uShadowAtlas, vec3((tile + inTile) * 0.5, p.z));
 }
 
-// Lambert diffuse + GGX specular (Smith-Schlick visibility, Schlick Fresnel).
-vec3 brdf(vec3 n, vec3 v, vec3 l, vec3 base, float roughness, float metallic) {
+// GGX specular (Smith-Schlick visibility, Schlick Fresnel).
+vec3 specularBrdf(vec3 n, vec3 v, vec3 l, vec3 base, float roughness, float metallic) {
   float coat = 2.0 * uSpecularLevel;
   vec3 h = normalize(l + v);
   float nl = max(dot(n, l), 0.0), nv = max(dot(n, v), 1e-4), nh = max(dot(n, h), 0.0), vh = max(dot(v, h), 0.0);
@@ -231,14 +234,18 @@ vec3 brdf(vec3 n, vec3 v, vec3 l, vec3 base, float roughness, float metallic) {
   float f90 = mix(coat, 1.0, metallic);
   float m = 1.0 - vh, m2 = m * m;
   vec3 f = f0 + (f90 - f0) * (m2 * m2 * m);
-  vec3 specular = d * g * f / max(4.0 * nl * nv, 1e-4);
-  return base * (1.0 - metallic) / PI + specular;
+  return d * g * f / max(4.0 * nl * nv, 1e-4);
 }
 
-// Light `i` of type `type` (0 distant, 1 sphere, 2 rect, 3 disk, 4 cylinder),
-// its shadow map in atlas slot `slot` (-1: none).
-vec3 lightContribution(int i, int type, int slot, vec3 n, vec3 v, vec3 base, float roughness, float metallic) {
-  vec3 l;
+// Lambert diffuse + GGX specular.
+vec3 brdf(vec3 n, vec3 v, vec3 l, vec3 base, float roughness, float metallic) {
+  return base * (1.0 - metallic) / PI + specularBrdf(n, v, l, base, roughness, metallic);
+}
+
+// The irradiance at normal incidence that light `i` of type `type` (0
+// distant, 1 sphere, 2 rect, 3 disk, 4 cylinder) sends, its shadow map in
+// atlas slot `slot` (-1: none) applied, and the direction `l` toward it.
+vec3 incidentLight(int i, int type, int slot, out vec3 l) {
   vec3 irradiance;
   if (type == 0) {  // distant: radiance is irradiance at normal incidence
     l = -uLightDirection[i];
@@ -257,8 +264,25 @@ vec3 lightContribution(int i, int type, int slot, vec3 n, vec3 v, vec3 base, flo
     irradiance = uLightRadiance[i] * area * facing / d2;
   }
   if (slot >= 0) irradiance *= shadow(slot);
+  return irradiance;
+}
+
+vec3 lightContribution(int i, int type, int slot, vec3 n, vec3 v, vec3 base, float roughness, float metallic) {
+  vec3 l;
+  vec3 irradiance = incidentLight(i, type, slot, l);
   float nl = max(dot(n, l), 0.0);
   return brdf(n, v, l, base, roughness, metallic) * irradiance * nl;
+}
+
+// The same for a light whose inputs:diffuse and inputs:specular are not
+// both 1: each lobe scaled by its multiplier.
+vec3 lightContributionScaled(int i, int type, int slot, vec3 n, vec3 v, vec3 base, float roughness, float metallic) {
+  vec3 l;
+  vec3 irradiance = incidentLight(i, type, slot, l);
+  float nl = max(dot(n, l), 0.0);
+  vec2 k = uLightResponse[i];
+  vec3 f = k.x * base * (1.0 - metallic) / PI + k.y * specularBrdf(n, v, l, base, roughness, metallic);
+  return f * irradiance * nl;
 }
 
 void main() {
@@ -310,12 +334,12 @@ void main() {
   // same with uniform radiance.
   float nv = max(dot(n, v), 1e-4);
 #if HAS_DOME
-  vec3 diffuseLight = uDomeScale * textureLod(uDomeIrradiance, latLong(uDomeFromWorld * n), 0.0).rgb;
-  vec3 specularLight =
-      uDomeScale * textureLod(uDome, latLong(uDomeFromWorld * reflect(-v, n)), roughness * uDomeLod).rgb;
+  vec3 diffuseLight = uDomeResponse.x * uDomeScale * textureLod(uDomeIrradiance, latLong(uDomeFromWorld * n), 0.0).rgb;
+  vec3 specularLight = uDomeResponse.y * uDomeScale *
+                       textureLod(uDome, latLong(uDomeFromWorld * reflect(-v, n)), roughness * uDomeLod).rgb;
 #else
   vec3 diffuseLight = uAmbient;
-  vec3 specularLight = uAmbient;
+  vec3 specularLight = uAmbientSpecular;
 #endif
   vec2 ab = textureLod(uBrdfLut, vec2(nv, roughness), 0.0).rg;
   float coat = 2.0 * uSpecularLevel;

@@ -45,32 +45,40 @@ inline PathTracedFrame trace(const RenderList& list, int width, int height, Path
   return frame;
 }
 
-// A unit sphere as an OBJ file: a latitude-longitude grid fine enough
-// (256 x 128) that its facets stay within 0.03 % of the sphere, with the
-// exact normals at the vertices. The procedural Sphere (48 x 24) is 0.2 %
-// off, which the 1 % tests below would feel through the shading normals.
-inline std::string fineSphereObj() {
-  const std::filesystem::path file = scratchFolder("meshes") / "fine_sphere.obj";
+// The zone of the unit sphere between polar angles theta0 and theta1 (from
+// +Z) as an OBJ file `name` in the scratch folder: a latitude-longitude
+// grid of `rows` x 256, with the exact normals at the vertices (no
+// degenerate triangles at a pole).
+inline std::string sphereZoneObj(const std::string& name, double theta0, double theta1, int rows) {
+  const std::filesystem::path file = scratchFolder("meshes") / name;
   if (std::filesystem::exists(file)) return file.string();
-  const int columns = 256, rows = 128;
+  const int columns = 256;
   std::ofstream out(file.string() + ".tmp");
   for (int j = 0; j <= rows; ++j)
     for (int i = 0; i <= columns; ++i) {
-      const double theta = kPi * j / rows, phi = 2 * kPi * i / columns;
+      const double theta = theta0 + (theta1 - theta0) * j / rows, phi = 2 * kPi * i / columns;
       const double x = std::sin(theta) * std::cos(phi), y = std::sin(theta) * std::sin(phi), z = std::cos(theta);
       out << "v " << x << ' ' << y << ' ' << z << "\nvn " << x << ' ' << y << ' ' << z << '\n';
     }
   auto index = [&](int i, int j) { return j * (columns + 1) + i + 1; };
+  const bool northPole = theta0 == 0.0, southPole = theta1 == kPi;
   for (int j = 0; j < rows; ++j)
     for (int i = 0; i < columns; ++i) {
       const int a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1), d = index(i, j + 1);
-      if (j > 0) out << "f " << a << "//" << a << ' ' << d << "//" << d << ' ' << b << "//" << b << '\n';
-      if (j < rows - 1) out << "f " << b << "//" << b << ' ' << d << "//" << d << ' ' << c << "//" << c << '\n';
+      if (!(northPole && j == 0)) out << "f " << a << "//" << a << ' ' << d << "//" << d << ' ' << b << "//" << b << '\n';
+      if (!(southPole && j == rows - 1))
+        out << "f " << b << "//" << b << ' ' << d << "//" << d << ' ' << c << "//" << c << '\n';
     }
   out.close();
   std::filesystem::rename(file.string() + ".tmp", file);
   return file.string();
 }
+
+// A unit sphere as an OBJ file: a latitude-longitude grid fine enough
+// (256 x 128) that its facets stay within 0.03 % of the sphere, with the
+// exact normals at the vertices. The procedural Sphere (48 x 24) is 0.2 %
+// off, which the 1 % tests below would feel through the shading normals.
+inline std::string fineSphereObj() { return sphereZoneObj("fine_sphere.obj", 0.0, kPi, 128); }
 
 // The integral over the azimuth of the BSDF's f cos θi for view cosine
 // muO and light cosine muI (both against the normal), by the midpoint rule

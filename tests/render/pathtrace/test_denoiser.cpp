@@ -21,6 +21,7 @@ struct Frame {
   int width, height;
   std::vector<float> radiance, albedo, normal, depth;
   std::vector<uint32_t> instance;
+  std::vector<float> variance;  // per pixel, the tracer's; empty: the spatial estimate
 
   Frame(int w, int h)
       : width(w), height(h), radiance(size_t(w * h * 3), 0.0f), albedo(size_t(w * h * 3), 1.0f),
@@ -34,7 +35,7 @@ struct Frame {
   }
   DenoiseInputs inputs(bool withInstances = true) const {
     return {width, height, radiance.data(), albedo.data(), normal.data(), depth.data(),
-            withInstances ? instance.data() : nullptr};
+            withInstances ? instance.data() : nullptr, variance.empty() ? nullptr : variance.data()};
   }
 };
 
@@ -73,11 +74,16 @@ TEST_CASE("denoiser: a noisy flat wall converges toward its mean, which stays", 
     wall.albedo[i] = 0.5f;
     wall.radiance[i] = kTruth * (1.0f + 0.3f * gaussianish(rng));
   }
-  const std::vector<float> out = denoise(wall);
-  const double before = rmsError(wall.radiance, kTruth), after = rmsError(out, kTruth);
-  INFO("RMS error " << before << " -> " << after);
-  CHECK(after * 4.0 < before);
-  CHECK(mean(out) == Approx(mean(wall.radiance)).epsilon(0.005));
+  for (bool perPixel : {false, true}) {
+    INFO((perPixel ? "per-pixel variance" : "spatial noise estimate"));
+    // The radiance's luminance variance per pixel, as the tracer reports it.
+    if (perPixel) wall.variance.assign(size_t(64 * 64), (0.3f * kTruth) * (0.3f * kTruth));
+    const std::vector<float> out = denoise(wall);
+    const double before = rmsError(wall.radiance, kTruth), after = rmsError(out, kTruth);
+    INFO("RMS error " << before << " -> " << after);
+    CHECK(after * 4.0 < before);
+    CHECK(mean(out) == Approx(mean(wall.radiance)).epsilon(0.005));
+  }
 }
 
 TEST_CASE("denoiser: an edge between instances stays sharp", "[pathtrace][denoiser]") {
@@ -196,12 +202,19 @@ TEST_CASE("denoiser: the output is the same whatever the thread count", "[pathtr
       frame.setRgb(frame.radiance, x, y, float(rng.uniform01()), float(rng.uniform01()), 2.0f * float(rng.uniform01()));
       if (rng.uniform01() < 0.02) frame.depth[p] = std::numeric_limits<float>::infinity();
     }
-  const std::vector<float> single = denoise(frame, true, 1);
-  for (unsigned threads : {2u, 3u, 8u, 61u, 200u}) {
-    INFO(threads << " threads");
-    const std::vector<float> multi = denoise(frame, true, threads);
-    CHECK(std::memcmp(single.data(), multi.data(), single.size() * sizeof(float)) == 0);
+  for (bool perPixel : {true, false}) {
+    INFO((perPixel ? "per-pixel variance" : "spatial noise estimate"));
+    frame.variance.clear();
+    if (perPixel)
+      for (size_t p = 0; p < frame.depth.size(); ++p) frame.variance.push_back(0.05f * float(rng.uniform01()));
+    const std::vector<float> single = denoise(frame, true, 1);
+    for (unsigned threads : {2u, 3u, 8u, 61u, 200u}) {
+      INFO(threads << " threads");
+      const std::vector<float> multi = denoise(frame, true, threads);
+      CHECK(std::memcmp(single.data(), multi.data(), single.size() * sizeof(float)) == 0);
+    }
   }
+  const std::vector<float> single = denoise(frame, true, 1);
   // One denoiser, reused at another size and back: its scratch buffers
   // carry nothing over.
   Denoiser reused({.threads = 4});

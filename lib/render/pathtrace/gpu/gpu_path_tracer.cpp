@@ -100,7 +100,8 @@ struct GpuPathTracer::Impl {
   int samplesPerDispatch = 0;
   std::optional<DenoiseSettings> denoise;
   GLuint denoiseProgram = 0;
-  GLuint denoiseWork = 0;  // four vec4 planes: illumination A, B, (gradient, noise, id), guides; never read back
+  GLuint denoiseWork = 0;  // five vec4 planes (pt_denoise.glsl); never read back
+  bool denoiseWithVariance = false;
   size_t denoiseCapacity = 0;
 
   const GlComputeApi& gl() const { return context->gl(); }
@@ -176,7 +177,7 @@ struct GpuPathTracer::Impl {
       denoiseProgram = build(parts, 1, "denoising");
       g.glGenBuffers(1, &denoiseWork);
     }
-    const size_t pixels = size_t(width) * size_t(height), bytes = 4 * pixels * 4 * sizeof(float);
+    const size_t pixels = size_t(width) * size_t(height), bytes = 5 * pixels * 4 * sizeof(float);
     g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, denoiseWork);
     if (bytes > denoiseCapacity) {
       g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
@@ -190,6 +191,7 @@ struct GpuPathTracer::Impl {
     set("width", width);
     set("height", height);
     set("samples", samples);
+    set("useVariance", denoiseWithVariance ? 1 : 0);
     setF("sigmaColor", denoise->sigmaColor);
     setF("sigmaNormal", denoise->sigmaNormal);
     setF("sigmaDepth", denoise->sigmaDepth);
@@ -271,10 +273,11 @@ GpuPathTracer::~GpuPathTracer() {
 }
 
 const PathTraceStats& GpuPathTracer::stats() const { return impl_->stats; }
-void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings) {
+void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings, bool perPixelVariance) {
   if (settings && (settings->iterations < 0 || settings->iterations > 16))
     throw std::invalid_argument("Denoiser: iterations must be 0 to 16");
   impl_->denoise = settings;
+  impl_->denoiseWithVariance = perPixelVariance;
 }
 void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispatch = std::max(samples, 0); }
 std::string GpuPathTracer::device() const { return impl_->context->description(); }
@@ -296,7 +299,7 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
     ParamsHeader header{};
     cameraPlanes(list.cameras[cameraIndex], width, height, header);
     const int32_t counts[4] = {m.settings.maxBounces, int32_t(m.scene.lights.size()), int32_t(m.scene.instances.size()),
-                               samples};
+                               m.scene.anyLobeMultiplier ? 1 : 0};
     std::copy(counts, counts + 4, header.counts);
     header.seed[0] = uint32_t(frameSeed);
     header.seed[1] = uint32_t(frameSeed >> 32);
@@ -347,6 +350,7 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
     out.normal.resize(3 * pixels);
     out.depth.resize(pixels);
     out.instance.resize(pixels);
+    out.variance.assign(pixels, 0.0f);
     PathTraceStats stats;
     for (size_t p = 0; p < pixels; ++p) {
       const FilmPixel& f = m.film[p];
@@ -356,6 +360,11 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
         out.normal[3 * p + size_t(c)] = f.normalDepth[c];
       }
       out.depth[p] = f.normalDepth[3];
+      if (!m.denoise && samples > 1) {  // path_tracer.cpp's, from float sums
+        const double n = samples;
+        const double mean = (0.2126 * f.sum[0] + 0.7152 * f.sum[1] + 0.0722 * f.sum[2]) / n;
+        out.variance[p] = float(std::max(0.0, double(f.albedo[3]) / n - mean * mean) / (n - 1));
+      }
       out.instance[p] = f.rays[3];
       stats.rays += uint64_t(f.rays[0]) | (uint64_t(f.rays[1]) << 32);
       stats.cameraRays += f.rays[2];

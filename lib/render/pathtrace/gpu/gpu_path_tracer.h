@@ -52,9 +52,12 @@ class GpuPathTracer {
   const PathTraceStats& stats() const;
   // With a value, render() also runs the denoiser (denoiser.h's filter,
   // ported to a compute kernel; `threads` is not read) on the GPU before
-  // the frame is read back: out.radiance is then the denoised radiance.
-  // Close to the CPU Denoiser's output on the same film, not byte-identical.
-  void setDenoiser(const std::optional<DenoiseSettings>& settings);
+  // the frame is read back: out.radiance is then the denoised radiance (and
+  // out.variance is left 0). perPixelVariance: the filter's SVGF mode on the
+  // samples' own variance (DenoiseInputs::variance), else its neighbourhood
+  // estimate. Close to the CPU Denoiser's output on the same film, not
+  // byte-identical.
+  void setDenoiser(const std::optional<DenoiseSettings>& settings, bool perPixelVariance = true);
   // Samples per pixel in one dispatch; 0 (the default): about a million
   // paths a dispatch. Changes the timing, never the image.
   void setSamplesPerDispatch(int samples);

@@ -158,8 +158,7 @@ void GpuSceneData::update(const RenderList& list) {
       std::copy(scalars, scalars + 4, r.scalars);
       const float opacity[4] = {m.opacityConstant, m.opacityCutoff, m.cosRotate, m.sinRotate};
       std::copy(opacity, opacity + 4, r.opacity);
-      // The specular level shadeSurface gives the BSDF (its PbrMaterial's default while the material does not carry one).
-      const float placement[4] = {m.textureScale.x(), m.textureScale.y(), ShadedSurface{}.material.specularLevel, 0.0f};
+      const float placement[4] = {m.textureScale.x(), m.textureScale.y(), m.specularLevel, 0.0f};
       std::copy(placement, placement + 4, r.placement);
       const int32_t maps[4] = {textureIndex(m.baseMap), textureIndex(m.roughnessMap), textureIndex(m.metallicMap),
                                textureIndex(m.normalMap)};
@@ -223,10 +222,11 @@ void GpuSceneData::packLights(const RenderList& list) {
     return domes_.emplace(light.texture, std::make_unique<PtDomeMap>(std::move(map))).first->second.get();
   });
   lights.clear();
+  anyLobeMultiplier = built.anyLobeMultiplier();
   const PtDomeMap* domeMap = nullptr;
   for (const PtLights::Light& l : built.lights()) {
     GpuLightRecord r{};
-    const int32_t info[4] = {int32_t(l.kind), l.delta ? 1 : 0, l.map ? 1 : 0, 0};
+    const int32_t info[4] = {int32_t(l.kind), l.delta ? 1 : 0, l.map ? 1 : 0, l.point ? 1 : 0};
     std::copy(info, info + 4, r.info);
     put3(r.radiancePick, l.radiance, l.pick);
     put3(r.positionRadius, l.position, l.radius);
@@ -235,7 +235,7 @@ void GpuSceneData::packLights(const RenderList& list) {
     put3(r.axisZLength, l.axisZ, l.length);
     put3(r.emitArea, l.emit, l.area);
     put3(r.toLightCone, l.toLight, l.oneMinusCos);
-    put3(r.misc, Vec3f(l.sin2Half, l.mapProbability, 0.0f), 0.0f);
+    put3(r.misc, Vec3f(l.sin2Half, l.mapProbability, l.diffuse), l.specular);
     put3(r.mapScale, l.mapScale, 0.0f);
     put3(r.ambient, l.ambient, 0.0f);
     for (int row = 0; row < 3; ++row) put3(r.domeFromWorld + 4 * row, Vec3f(l.domeFromWorld.row(row).transpose()), 0.0f);

@@ -65,6 +65,7 @@ class GpuSceneData {
   bool instancesChanged = false;
   std::vector<GpuMaterialRecord> materials;
   std::vector<GpuLightRecord> lights;
+  bool anyLobeMultiplier = false;  // PtLights::anyLobeMultiplier()
   // Textures: a table of (first texel, width, height, sRGB) and the texels
   // (RGBA8 words), then the dome map's texels (4 float words each), uploaded
   // one after the other.

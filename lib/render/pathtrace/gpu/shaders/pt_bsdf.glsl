@@ -80,12 +80,18 @@ float specularProbability(Bsdf b, vec3 wo) {
   return specular + diffuse > 0.0 ? specular / (specular + diffuse) : 1.0;
 }
 
-vec3 bsdfEval(Bsdf b, vec3 wo, vec3 wi) {
-  if (wo.z <= kMinCos || wi.z <= kMinCos) return vec3(0.0);
-  vec3 diffuse = b.diffuseColor * (wi.z / kPi);
+// f cos θi by lobe (PbrBsdf::evalLobes); bsdfEval is their sum.
+void bsdfEvalLobes(Bsdf b, vec3 wo, vec3 wi, out vec3 diffuse, out vec3 specular) {
+  diffuse = specular = vec3(0.0);
+  if (wo.z <= kMinCos || wi.z <= kMinCos) return;
+  diffuse = b.diffuseColor * (wi.z / kPi);
   vec3 h = normalize(wo + wi);
   float g2 = 1.0 / (1.0 + smithLambda(wo, b.alpha) + smithLambda(wi, b.alpha));
-  vec3 specular = schlickFresnel(b.f0, b.f90, dot(wo, h)) * (ggxDistribution(h, b.alpha) * g2 / (4.0 * wo.z));
+  specular = schlickFresnel(b.f0, b.f90, dot(wo, h)) * (ggxDistribution(h, b.alpha) * g2 / (4.0 * wo.z));
+}
+vec3 bsdfEval(Bsdf b, vec3 wo, vec3 wi) {
+  vec3 diffuse, specular;
+  bsdfEvalLobes(b, wo, wi, diffuse, specular);
   return diffuse + specular;
 }
 

@@ -19,7 +19,7 @@ layout(std430, binding = 0) readonly buffer Params {
   vec4 camFar0, camFarX, camFarY;     // the same on the far plane
   vec4 eye;
   ivec4 size;        // width, height, first sample, samples in this dispatch
-  ivec4 counts;      // max bounces, light count, instance count, total samples
+  ivec4 counts;      // max bounces, light count, instance count, 1 where a light scales the BSDF's lobes apart
   uvec4 seed;        // frame seed (low, high), top-level root item, label pass (1: write the labels)
   ivec4 dome;        // width, height (0: no map), first texel (uint words in `texels`), pick cdf offset
   ivec4 domeTables;  // offsets: row cdf, column cdfs, row cosines, texel solid angles
@@ -31,7 +31,7 @@ layout(std430, binding = 0) readonly buffer Params {
 // invocation only, in sample order: no atomics, nothing summed across pixels.
 struct FilmPixel {
   vec4 sum;
-  vec4 albedo;       // rgb, -
+  vec4 albedo;       // rgb; w: the samples' sum of squared luminance
   vec4 normalDepth;  // xyz, depth
   uvec4 rays;        // rays traced (low, high), camera rays, the instance id
 };

@@ -3,13 +3,13 @@
 const int kDistant = 0, kSphere = 1, kRect = 2, kDisk = 3, kCylinder = 4, kDome = 5;  // LightKind's order
 
 struct Light {
-  ivec4 info;           // kind, delta, has map, -
+  ivec4 info;           // kind, delta, has map, a point (a sphere light with treatAsPoint)
   vec4 radiancePick;    // radiance (a delta distant light's irradiance), pick probability
   vec4 positionRadius;
   vec4 axisXWidth, axisYHeight, axisZLength;
   vec4 emitArea;        // the emitting direction (-Z), area
   vec4 toLightCone;     // distant: toward the light, 1 - cos of the cone
-  vec4 misc;            // sin^2 of the cone's half-angle, the dome's map probability, -, -
+  vec4 misc;            // sin^2 of the cone's half-angle, the dome's map probability, inputs:diffuse, inputs:specular
   vec4 mapScale, ambient;
   vec4 domeFromWorld[3];  // rows
 };
@@ -106,6 +106,7 @@ bool hitShape(Light l, vec3 o, vec3 d, float tMin, float tMax, out float t) {
   vec3 position = l.positionRadius.xyz;
   float radius = l.positionRadius.w;
   if (kind == kSphere) {
+    if (l.info.w != 0) return false;
     vec3 oc = o - position;
     float r2 = radius * radius;
     float c = dot(oc, oc) - r2;
@@ -153,7 +154,7 @@ float densityOf(Light l, vec3 p, vec3 n, vec3 wi) {
   if (kind == kSphere) {
     vec3 toCentre = l.positionRadius.xyz - p;
     float d2 = dot(toCentre, toCentre), r2 = l.positionRadius.w * l.positionRadius.w;
-    if (!(d2 > r2)) return 0.0;
+    if (l.info.w != 0 || !(d2 > r2)) return 0.0;
     float sin2Max = r2 / d2;
     float oneMinusCosMax = sin2Max / (1.0 + sqrt(max(0.0, 1.0 - sin2Max)));
     return 1.0 / (2.0 * kPi * oneMinusCosMax);
@@ -209,6 +210,16 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
     vec3 toCentre = l.positionRadius.xyz - p;
     float d2 = dot(toCentre, toCentre);
     float r2 = l.positionRadius.w * l.positionRadius.w;
+    if (l.info.w != 0) {  // intensity L pi r^2: the irradiance it gives at distance d, head-on
+      if (!(d2 > 0.0)) return false;
+      float d = sqrt(d2);
+      s.direction = toCentre / d;
+      s.distance = d;
+      s.radiance = l.radiancePick.xyz * (kPi * r2 / d2);
+      s.pdf = pick;
+      s.delta = true;
+      return s.pdf > 0.0 && !isinf(s.pdf) && !isnan(s.pdf);
+    }
     if (!(d2 > r2)) return false;
     float d = sqrt(d2);
     float sin2Max = r2 / d2;
@@ -272,6 +283,14 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
   return s.pdf > 0.0 && !isinf(s.pdf) && !isnan(s.pdf);
 }
 
+// A light's inputs:diffuse and inputs:specular on the BSDF's lobes (PtLights::response, responseScale).
+vec3 lightResponse(int light, vec3 fd, vec3 fs) { return lights[light].misc.z * fd + lights[light].misc.w * fs; }
+vec3 responseScale(int light, vec3 fd, vec3 fs) {
+  vec3 sum = fd + fs, weighted = lightResponse(light, fd, fs);
+  return vec3(sum.x > 0.0 ? weighted.x / sum.x : 1.0, sum.y > 0.0 ? weighted.y / sum.y : 1.0,
+              sum.z > 0.0 ? weighted.z / sum.z : 1.0);
+}
+
 // The closest emitting face of a light shape along the ray.
 bool intersectLights(vec3 o, vec3 d, float tMin, float tMax, out int light, out vec3 radiance) {
   light = -1;
@@ -294,7 +313,8 @@ bool lightsBlock(vec3 o, vec3 d, float tMin, float tMax, int except) {
   return false;
 }
 
-vec3 escaped(vec3 p, vec3 n, vec3 wi, float pdfBsdf) {
+// `lobes`: whether (fd, fs), the BSDF's lobes along wi at p, scale each light by its multipliers.
+vec3 escaped(vec3 p, vec3 n, vec3 wi, float pdfBsdf, bool lobes, vec3 fd, vec3 fs) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < params.counts.y; ++i) {
     Light l = lights[i];
@@ -309,6 +329,7 @@ vec3 escaped(vec3 p, vec3 n, vec3 wi, float pdfBsdf) {
       continue;
     }
     float weight = pdfBsdf > 0.0 ? powerHeuristic(pdfBsdf, l.radiancePick.w * densityOf(l, p, n, wi)) : 1.0;
+    if (lobes && (l.misc.z != 1.0 || l.misc.w != 1.0)) radiance *= responseScale(i, fd, fs);
     sum += weight * radiance;
   }
   return sum;

@@ -38,6 +38,9 @@ vec3 tracePath(vec3 origin, vec3 direction, float tMax, inout Sampler sampler, i
   int shadowLight = -1;
   bool continues = false;
   vec3 nextOrigin = vec3(0.0), nextDirection = vec3(0.0);
+  // The previous vertex's BSDF lobes along the sampled direction, where a light scales them apart.
+  bool lobeMultipliers = params.counts.w != 0;
+  vec3 previousDiffuse = vec3(0.0), previousSpecular = vec3(0.0);
   for (;;) {
     Hit hit;
     bool found = traceScene(origin, direction, tMin, tMax, shadow, hit);
@@ -50,12 +53,15 @@ vec3 tracePath(vec3 origin, vec3 direction, float tMax, inout Sampler sampler, i
       vec3 lightRadiance;
       if (depth > 0 && intersectLights(origin, direction, tMin, found ? hit.t : tMax, light, lightRadiance)) {
         float weight = powerHeuristic(pdfBsdf, lightPdf(light, previousPoint, previousNormal, direction));
+        if (lobeMultipliers) lightRadiance *= responseScale(light, previousDiffuse, previousSpecular);
         radiance += beta * lightRadiance * weight;
         break;
       }
       if (!found) {
         float pdf = depth == 0 ? 0.0 : pdfBsdf;
-        if (!label) radiance += beta * escaped(previousPoint, previousNormal, direction, pdf);
+        if (!label)
+          radiance += beta * escaped(previousPoint, previousNormal, direction, pdf, depth > 0 && lobeMultipliers,
+                                     previousDiffuse, previousSpecular);
         break;
       }
       if (depth == maxBounces && !label) break;
@@ -86,7 +92,9 @@ vec3 tracePath(vec3 origin, vec3 direction, float tMax, inout Sampler sampler, i
       LightSample ls;
       if (sampleLight(g.position, surface.normal, uPick, uLight, ls) && dot(ls.direction, side) > 0.0) {
         vec3 wiLocal = toLocal(shading, ls.direction);
-        vec3 f = bsdfEval(bsdf, woLocal, wiLocal);
+        vec3 fd, fs;
+        bsdfEvalLobes(bsdf, woLocal, wiLocal, fd, fs);
+        vec3 f = lightResponse(ls.light, fd, fs);
         if (maxComponent(f) > 0.0) {
           shadow = true;
           shadowMax = isinf(ls.distance) ? kInf : ls.distance * (1.0 - 1e-4);
@@ -108,6 +116,7 @@ vec3 tracePath(vec3 origin, vec3 direction, float tMax, inout Sampler sampler, i
         pdfBsdf = pdf;
         previousPoint = g.position;
         previousNormal = surface.normal;
+        if (lobeMultipliers) bsdfEvalLobes(bsdf, woLocal, wiLocal, previousDiffuse, previousSpecular);
         if (depth >= kRouletteDepth) {
           float q = max(0.0, 1.0 - maxComponent(beta));
           if (uRoulette < q) continues = false;
@@ -168,6 +177,8 @@ void main() {
       continue;
     }
     px.sum.xyz += L;
+    float l = luminance(L);
+    px.albedo.w += l * l;  // for the per-pixel variance (PathTracedFrame::variance)
   }
   px.rays.z += uint(params.size.w) + (labels ? 1u : 0u);
   uint low = px.rays.x + rays;
