@@ -10,14 +10,15 @@
 namespace sdg {
 namespace {
 
-using Factory = std::unique_ptr<ColorRenderer> (*)(const ColorRendererInputs&);
-
 // The GPU tracer's factory where its library is built in (see
-// render/color_renderer.h, "Adding a renderer"); null until then.
+// render/color_renderer.h, "Adding a renderer"). A flag beside it, not a
+// null function pointer: the compiler warns about testing a function's address.
 #ifdef SDG_HAVE_GPU_PATHTRACER
-constexpr Factory kGpuTracer = &makeGpuTracerColor;
+constexpr bool kGpuTracerBuiltIn = true;
+std::unique_ptr<ColorRenderer> makeGpuTracer(const ColorRendererInputs& inputs) { return makeGpuTracerColor(inputs); }
 #else
-constexpr Factory kGpuTracer = nullptr;
+constexpr bool kGpuTracerBuiltIn = false;
+std::unique_ptr<ColorRenderer> makeGpuTracer(const ColorRendererInputs&) { return nullptr; }
 #endif
 
 }  // namespace
@@ -25,7 +26,7 @@ constexpr Factory kGpuTracer = nullptr;
 const char* const kNoGpuTracer =
     "render.pathtracer: gpu, but this build of sdgbehave has no GPU path tracer; use render.pathtracer: cpu (or auto)";
 
-bool gpuPathTracerBuiltIn() { return kGpuTracer != nullptr; }
+bool gpuPathTracerBuiltIn() { return kGpuTracerBuiltIn; }
 
 std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inputs, const SourceLoc& setting) {
   const RenderSettings& s = inputs.settings;
@@ -34,16 +35,16 @@ std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inpu
     case PathTracerChoice::Cpu:
       return makeCpuTracerColor(inputs);
     case PathTracerChoice::Gpu:
-      if (!kGpuTracer) throw SceneError(setting, kNoGpuTracer);
+      if (!kGpuTracerBuiltIn) throw SceneError(setting, kNoGpuTracer);
       try {
-        return kGpuTracer(inputs);
+        return makeGpuTracer(inputs);
       } catch (const RendererUnavailable& e) {
         throw RunError(std::string("render.pathtracer: gpu: the GPU path tracer cannot run here: ") + e.what());
       }
     case PathTracerChoice::Auto:
-      if (kGpuTracer) {
+      if (kGpuTracerBuiltIn) {
         try {
-          return kGpuTracer(inputs);
+          return makeGpuTracer(inputs);
         } catch (const RendererUnavailable& e) {
           log::warn(std::string("render.pathtracer: auto: the GPU path tracer cannot run here (") + e.what() +
                     "); tracing on the CPU");

@@ -1,9 +1,8 @@
 #include "render/pathtrace/cpu_tracer_color.h"
 
 namespace sdg {
-namespace {
 
-PathTraceSettings tracerSettings(const RenderSettings& s, int threads) {
+PathTraceSettings pathTraceSettingsOf(const RenderSettings& s, int threads) {
   PathTraceSettings p;
   p.samples = s.samples;
   p.maxBounces = s.maxBounces;
@@ -11,31 +10,34 @@ PathTraceSettings tracerSettings(const RenderSettings& s, int threads) {
   return p;
 }
 
-DenoiseSettings denoiseSettings(int threads) {
+DenoiseSettings denoiseSettingsOf(int threads) {
   DenoiseSettings d;
   d.threads = unsigned(threads);
   return d;
 }
 
-}  // namespace
+void finishTracedColor(const RenderSettings& settings, Denoiser& denoiser, PathTracedFrame& frame, FramePasses& passes,
+                       bool keepRadiance) {
+  if (settings.denoise) {
+    const DenoiseInputs in{frame.width, frame.height, frame.radiance.data(), frame.albedo.data(),
+                           frame.normal.data(), frame.depth.data(), frame.instance.data(),
+                           frame.variance.empty() ? nullptr : frame.variance.data()};
+    denoiser.run(in, frame.radiance.data());
+  }
+  passes.rgba.resize(size_t(frame.width) * size_t(frame.height) * 4);
+  toneMap(frame, settings.exposureScale, passes.rgba.data());
+  if (keepRadiance) passes.hdrColor = frame.radiance;
+}
 
 CpuTracerColor::CpuTracerColor(const ColorRendererInputs& inputs)
     : settings_(inputs.settings),
-      tracer_(inputs.assets, tracerSettings(inputs.settings, inputs.threads)),
-      denoiser_(denoiseSettings(inputs.threads)) {}
+      tracer_(inputs.assets, pathTraceSettingsOf(inputs.settings, inputs.threads)),
+      denoiser_(denoiseSettingsOf(inputs.threads)) {}
 
 void CpuTracerColor::render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
                             bool keepRadiance) {
   tracer_.render(list, cameraIndex, settings_.width, settings_.height, frameSeed, frame_);
-  if (settings_.denoise) {
-    const DenoiseInputs in{frame_.width, frame_.height, frame_.radiance.data(), frame_.albedo.data(),
-                           frame_.normal.data(), frame_.depth.data(), frame_.instance.data(),
-                           frame_.variance.data()};
-    denoiser_.run(in, frame_.radiance.data());
-  }
-  passes.rgba.resize(size_t(frame_.width) * size_t(frame_.height) * 4);
-  toneMap(frame_, settings_.exposureScale, passes.rgba.data());
-  if (keepRadiance) passes.hdrColor = frame_.radiance;
+  finishTracedColor(settings_, denoiser_, frame_, passes, keepRadiance);
 }
 
 std::unique_ptr<ColorRenderer> makeCpuTracerColor(const ColorRendererInputs& inputs) {

@@ -33,4 +33,13 @@ class CpuTracerColor final : public ColorRenderer {
 
 std::unique_ptr<ColorRenderer> makeCpuTracerColor(const ColorRendererInputs& inputs);
 
+// Shared with the GPU tracer's ColorRenderer (render/pathtrace/gpu): the
+// tracer's and the denoiser's settings from the run's, and what both do with
+// their film: the denoiser (render.denoise), the tone curve into
+// passes.rgba, the radiance kept for writer.hdr_color.
+PathTraceSettings pathTraceSettingsOf(const RenderSettings& settings, int threads);
+DenoiseSettings denoiseSettingsOf(int threads);
+void finishTracedColor(const RenderSettings& settings, Denoiser& denoiser, PathTracedFrame& frame, FramePasses& passes,
+                       bool keepRadiance);
+
 }  // namespace sdg

@@ -42,6 +42,14 @@ class EnvironmentSampler {
   // The density with which sample() returns `direction` (unit, dome frame).
   float pdf(const Vec3f& direction) const;
 
+  // The tables, for the GPU tracer (render/pathtrace/gpu), which uploads them.
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  const std::vector<float>& rowCdf() const { return rowCdf_; }
+  const std::vector<float>& columnCdf() const { return columnCdf_; }
+  const std::vector<double>& rowCosines() const { return rowCosines_; }
+  const std::vector<float>& texelSolidAngles() const { return texelSolidAngle_; }
+
  private:
   uint32_t width_, height_;
   std::vector<float> rowCdf_;           // height + 1 entries, 0 .. 1

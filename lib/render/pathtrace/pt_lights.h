@@ -84,6 +84,29 @@ struct LightHit {
 
 class PtLights {
  public:
+  // One light as sample() reads it; public for the GPU tracer, which uploads it (render/pathtrace/gpu).
+  struct Light {
+    LightKind kind = LightKind::Sphere;
+    Vec3f radiance = Vec3f::Zero();  // emitted; a delta distant light's irradiance
+    Vec3f position = Vec3f::Zero();
+    Vec3f axisX = Vec3f::UnitX(), axisY = Vec3f::UnitY(), axisZ = Vec3f::UnitZ();  // the light's frame
+    Vec3f emit = -Vec3f::UnitZ();  // it emits along its -Z
+    float radius = 0, width = 0, height = 0, length = 0, area = 0;
+    // Distant: toward the light, the cone's 1 - cos and sin^2 of its half-angle.
+    Vec3f toLight = Vec3f::UnitZ();
+    float oneMinusCos = 0, sin2Half = 0;
+    bool delta = false;
+    bool point = false;  // a sphere light with treatAsPoint
+    float diffuse = 1, specular = 1;  // inputs:diffuse, inputs:specular
+    // Dome: the textured map (may be null), its scale and frame, the uniform part.
+    const PtDomeMap* map = nullptr;
+    Eigen::Matrix3f domeFromWorld = Eigen::Matrix3f::Identity();
+    Vec3f mapScale = Vec3f::Zero();
+    Vec3f ambient = Vec3f::Zero();
+    float mapProbability = 0;  // of sampling by the map rather than the cosine lobe
+    float pick = 0;            // the probability of picking this light
+  };
+
   PtLights();
   ~PtLights();
   // `domeMap` loads (or finds) a dome's map by its light.
@@ -117,8 +140,10 @@ class PtLights {
   // Whether any light has a diffuse or specular multiplier other than 1.
   bool anyLobeMultiplier() const { return anyLobeMultiplier_; }
 
+  const std::vector<Light>& lights() const { return lights_; }
+  const std::vector<float>& pickCdf() const { return pickCdf_; }
+
  private:
-  struct Light;
   bool hitShape(const Light& light, const PtRay& ray, float& t) const;
   float densityOf(const Light& light, const Vec3f& p, const Vec3f& n, const Vec3f& wi) const;
   Vec3f domeRadiance(const Light& light, const Vec3f& wi) const;

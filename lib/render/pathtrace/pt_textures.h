@@ -31,6 +31,8 @@ class PtTexture {
   Eigen::Vector4f sample(const Vec2f& uv) const;
   uint32_t width() const { return image_.width; }
   uint32_t height() const { return image_.height; }
+  const ImageRgba8& image() const { return image_; }
+  bool srgb() const { return srgb_; }  // a colour map: texels are decoded from sRGB
 
  private:
   Eigen::Vector4f texel(uint32_t x, uint32_t y) const;

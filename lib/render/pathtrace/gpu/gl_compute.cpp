@@ -1,0 +1,197 @@
+#include "render/pathtrace/gpu/gl_compute.h"
+
+#include <dlfcn.h>
+
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+
+namespace sdg {
+namespace {
+
+template <typename Fn>
+Fn eglFunction(PFNEGLGETPROCADDRESSPROC getProc, const char* name) {
+  Fn fn = reinterpret_cast<Fn>(getProc(name));
+  if (!fn) throw GpuUnavailable(std::string("GPU path tracer: libEGL lacks ") + name);
+  return fn;
+}
+
+bool listed(const char* list, const char* name) {
+  if (!list) return false;
+  const std::string all = std::string(" ") + list + " ";
+  return all.find(std::string(" ") + name + " ") != std::string::npos;
+}
+
+// The first GPU device of EGL's device platform; Mesa also lists a
+// software one, which the surfaceless platform covers.
+EGLDeviceEXT firstGpuDevice(PFNEGLGETPROCADDRESSPROC getProc) {
+  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(getProc("eglQueryDevicesEXT"));
+  auto deviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(getProc("eglQueryDeviceStringEXT"));
+  EGLint count = 0;
+  if (!queryDevices || !queryDevices(0, nullptr, &count) || count <= 0) return nullptr;
+  std::vector<EGLDeviceEXT> all(static_cast<size_t>(count));
+  if (!queryDevices(count, all.data(), &count)) return nullptr;
+  for (EGLint i = 0; i < count; ++i)
+    if (!listed(deviceString ? deviceString(all[size_t(i)], EGL_EXTENSIONS) : nullptr, "EGL_MESA_device_software"))
+      return all[size_t(i)];
+  return nullptr;
+}
+
+PFNEGLGETPROCADDRESSPROC loadEgl(void*& library) {
+  library = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+  if (!library) return nullptr;
+  return reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(library, "eglGetProcAddress"));
+}
+
+// The context itself, made and used on one thread (ThreadedContext's).
+class EglComputeContext {
+ public:
+  EglComputeContext() {
+    auto getProc = loadEgl(library_);
+    if (!getProc) throw GpuUnavailable("GPU path tracer: cannot load libEGL.so.1 (or it has no eglGetProcAddress)");
+    makeCurrent_ = eglFunction<PFNEGLMAKECURRENTPROC>(getProc, "eglMakeCurrent");
+    destroyContext_ = eglFunction<PFNEGLDESTROYCONTEXTPROC>(getProc, "eglDestroyContext");
+    auto initialize = eglFunction<PFNEGLINITIALIZEPROC>(getProc, "eglInitialize");
+    auto bindApi = eglFunction<PFNEGLBINDAPIPROC>(getProc, "eglBindAPI");
+    auto chooseConfig = eglFunction<PFNEGLCHOOSECONFIGPROC>(getProc, "eglChooseConfig");
+    auto createContext = eglFunction<PFNEGLCREATECONTEXTPROC>(getProc, "eglCreateContext");
+    auto queryString = eglFunction<PFNEGLQUERYSTRINGPROC>(getProc, "eglQueryString");
+    auto platformDisplay = eglFunction<PFNEGLGETPLATFORMDISPLAYEXTPROC>(getProc, "eglGetPlatformDisplayEXT");
+    EGLDeviceEXT gpu = firstGpuDevice(getProc);  // else llvmpipe
+    onGpu_ = gpu != nullptr;
+    display_ = gpu ? platformDisplay(EGL_PLATFORM_DEVICE_EXT, gpu, nullptr)
+                   : platformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLint major = 0, minor = 0;
+    if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor) || !bindApi(EGL_OPENGL_API))
+      throw GpuUnavailable("GPU path tracer: no EGL display with desktop OpenGL");
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!listed(queryString(display_, EGL_EXTENSIONS), "EGL_KHR_no_config_context")) {
+      const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+      EGLint found = 0;
+      if (!chooseConfig(display_, attribs, &config, 1, &found) || found < 1)
+        throw GpuUnavailable("GPU path tracer: the EGL display offers no OpenGL configuration");
+    }
+    for (const EGLint minorVersion : {5, 3}) {
+      const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, minorVersion,
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+      context_ = createContext(display_, config, EGL_NO_CONTEXT, attribs);
+      if (context_ != EGL_NO_CONTEXT) break;
+    }
+    if (context_ == EGL_NO_CONTEXT)
+      throw GpuUnavailable("GPU path tracer: the device offers no OpenGL 4.3 core context (compute shaders)");
+    if (!makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw GpuUnavailable("GPU path tracer: cannot make its context current");
+#define SDG_LOAD_GL(type, name)                                                                     \
+  gl_.name = reinterpret_cast<type>(getProc(#name));                                                \
+  if (!gl_.name) throw GpuUnavailable("GPU path tracer: the OpenGL function " #name " is missing");
+    SDG_GL_COMPUTE_FUNCTIONS(SDG_LOAD_GL)
+#undef SDG_LOAD_GL
+    description_ = std::string(reinterpret_cast<const char*>(gl_.glGetString(GL_RENDERER))) + ", " +
+                   reinterpret_cast<const char*>(gl_.glGetString(GL_VERSION));
+  }
+
+  ~EglComputeContext() {
+    if (context_ != EGL_NO_CONTEXT) {
+      makeCurrent_(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      destroyContext_(display_, context_);
+    }
+    // The display stays initialised and libEGL loaded, as in the rasterizer's back end.
+  }
+
+  const GlComputeApi& gl() const { return gl_; }
+  std::string description() const { return description_; }
+  bool onGpu() const { return onGpu_; }
+
+ private:
+  void* library_ = nullptr;
+  PFNEGLMAKECURRENTPROC makeCurrent_ = nullptr;
+  PFNEGLDESTROYCONTEXTPROC destroyContext_ = nullptr;
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+  GlComputeApi gl_;
+  bool onGpu_ = false;
+  std::string description_;
+};
+
+// Owns the thread the context lives on; run() hands it one task at a time.
+class ThreadedContext final : public GlComputeContext {
+ public:
+  ThreadedContext() : thread_([this] { loop(); }) {
+    try {
+      run([this] { context_ = std::make_unique<EglComputeContext>(); });
+    } catch (...) {
+      stop();
+      throw;
+    }
+  }
+  ~ThreadedContext() override {
+    try {
+      run([this] { context_.reset(); });
+    } catch (...) {  // going away; nothing to report to
+    }
+    stop();
+  }
+
+  const GlComputeApi& gl() const override { return context_->gl(); }
+  std::string description() const override { return context_->description(); }
+  bool onGpu() const override { return context_->onGpu(); }
+
+  void run(const std::function<void()>& task) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    task_ = &task;
+    failure_ = nullptr;
+    wake_.notify_all();
+    done_.wait(lock, [this] { return task_ == nullptr; });
+    if (failure_) std::rethrow_exception(failure_);
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return task_ != nullptr || stopping_; });
+      if (!task_) return;
+      try {
+        (*task_)();
+      } catch (...) {
+        failure_ = std::current_exception();
+      }
+      task_ = nullptr;
+      done_.notify_all();
+    }
+  }
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void()>* task_ = nullptr;
+  std::exception_ptr failure_;
+  bool stopping_ = false;
+  std::unique_ptr<EglComputeContext> context_;
+  std::thread thread_;  // last: started once the members it uses exist
+};
+
+}  // namespace
+
+std::unique_ptr<GlComputeContext> createGlComputeContext() { return std::make_unique<ThreadedContext>(); }
+
+bool eglGpuDeviceListed() {
+  void* library = nullptr;
+  auto getProc = loadEgl(library);
+  return getProc && firstGpuDevice(getProc) != nullptr;  // libEGL stays loaded, as for the contexts
+}
+
+}  // namespace sdg

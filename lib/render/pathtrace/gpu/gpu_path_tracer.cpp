@@ -1,0 +1,381 @@
+#include "render/pathtrace/gpu/gpu_path_tracer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "render/camera_math.h"
+#include "render/pathtrace/gpu/gl_compute.h"
+#include "render/pathtrace/gpu/gpu_scene.h"
+
+// The kernel's parts, compiled in (lib/CMakeLists.txt's sdg_embed).
+extern const char kPtCommonGlsl[];
+extern const char kPtBsdfGlsl[];
+extern const char kPtSceneGlsl[];
+extern const char kPtLightsGlsl[];
+extern const char kPtTraceGlsl[];
+extern const char kPtDenoiseGlsl[];
+
+namespace sdg {
+namespace {
+
+constexpr int kGroupSize = 8;  // pt_common.glsl's local size, both axes
+// Samples per dispatch: about a million paths, so no single dispatch runs
+// long enough for a driver to call the device hung. Any split gives the
+// same sums (each pixel adds its samples in order).
+constexpr int64_t kPathsPerDispatch = 1 << 20;
+
+enum Binding : GLuint {
+  kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
+  kTextureTable, kTexels, kLights, kBindingCount
+};
+constexpr GLuint kDenoiseWork = 2;  // the denoise kernel's binding of `denoiseWork`
+
+// pt_common.glsl's Params header (std430), before the float tables.
+struct ParamsHeader {
+  float camNear0[4], camNearX[4], camNearY[4], camFar0[4], camFarX[4], camFarY[4], eye[4];
+  int32_t size[4];
+  int32_t counts[4];
+  uint32_t seed[4];
+  int32_t dome[4];
+  int32_t domeTables[4];
+};
+static_assert(sizeof(ParamsHeader) == 192, "the kernel's Params header is 192 bytes");
+
+struct FilmPixel {  // pt_common.glsl's FilmPixel
+  float sum[4], albedo[4], normalDepth[4];
+  uint32_t rays[4];
+};
+static_assert(sizeof(FilmPixel) == 64, "the kernel's film pixel is 64 bytes");
+
+void put(float* out, const Vec3d& v) {
+  for (int k = 0; k < 3; ++k) out[k] = float(v[k]);
+  out[3] = 0.0f;
+}
+
+// The CPU tracer's camera rays (path_tracer.cpp's CameraRays): the points
+// on the near and far planes through image point (px, py). Both are affine
+// in (px, py) (the projection's w is constant over each plane), so the
+// kernel gets them as a point and two steps per pixel, worked out here in
+// double precision.
+void cameraPlanes(const RenderCamera& camera, int width, int height, ParamsHeader& p) {
+  const Matrix4d cameraFromClip = projectionMatrix(camera, width, height).inverse();
+  const Eigen::Matrix3d rotation = camera.worldFromCamera.block<3, 3>(0, 0);
+  const Vec3d eye = camera.worldFromCamera.block<3, 1>(0, 3);
+  auto at = [&](double px, double py, double z) {
+    const double x = 2.0 * px / width - 1.0, y = 1.0 - 2.0 * py / height;
+    const Eigen::Vector4d h = cameraFromClip * Eigen::Vector4d(x, y, z, 1.0);
+    return Vec3d(h.head<3>() / h.w());
+  };
+  const Vec3d n0 = at(0, 0, -1), nx = at(1, 0, -1) - n0, ny = at(0, 1, -1) - n0;
+  const Vec3d f0 = at(0, 0, 1), fx = at(1, 0, 1) - f0, fy = at(0, 1, 1) - f0;
+  put(p.camNear0, rotation * n0 + eye);
+  put(p.camNearX, rotation * nx);
+  put(p.camNearY, rotation * ny);
+  put(p.camFar0, rotation * f0 + eye);
+  put(p.camFarX, rotation * fx);
+  put(p.camFarY, rotation * fy);
+  put(p.eye, eye);
+}
+
+}  // namespace
+
+struct GpuPathTracer::Impl {
+  Impl(const AssetResolver& assets, const PathTraceSettings& s)
+      : settings(s), context(createGlComputeContext()), scene(assets) {}
+
+  PathTraceSettings settings;
+  std::unique_ptr<GlComputeContext> context;
+  GpuSceneData scene;
+  GLuint program = 0;
+  std::array<GLuint, kBindingCount> buffers{};
+  std::array<size_t, kBindingCount> capacity{};
+  std::vector<FilmPixel> film;
+  PathTraceStats stats;
+  int samplesPerDispatch = 0;
+  std::optional<DenoiseSettings> denoise;
+  GLuint denoiseProgram = 0;
+  GLuint denoiseWork = 0;  // five vec4 planes (pt_denoise.glsl); never read back
+  bool denoiseWithVariance = false;
+  size_t denoiseCapacity = 0;
+
+  const GlComputeApi& gl() const { return context->gl(); }
+
+  void checkMemory(const char* what) {
+    const GLenum error = gl().glGetError();
+    if (error == GL_OUT_OF_MEMORY)
+      throw GpuUnavailable(std::string("GPU path tracer: out of GPU memory while uploading ") + what);
+    if (error != GL_NO_ERROR)
+      throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while uploading " + what);
+  }
+
+  // Replaces the buffer's contents from `offset` on; grows it (keeping
+  // nothing) when they do not fit, so callers that grow upload everything.
+  void upload(Binding b, const void* data, size_t bytes, size_t offset = 0, size_t reserve = 0) {
+    const GlComputeApi& g = gl();
+    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[b]);
+    if (offset + bytes > capacity[b] || capacity[b] == 0) {
+      const size_t size = std::max<size_t>({offset + bytes, reserve, 16});
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(size), nullptr, GL_DYNAMIC_DRAW);
+      capacity[b] = size;
+    }
+    if (bytes > 0) g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(offset), GLsizeiptr(bytes), data);
+    checkMemory("the scene");
+  }
+
+  // Compiles and links one kernel; a failure is a bug, reported with the driver's log.
+  GLuint build(const char* const* parts, size_t count, const char* what) {
+    const GlComputeApi& g = gl();
+    const GLuint shader = g.glCreateShader(GL_COMPUTE_SHADER);
+    g.glShaderSource(shader, GLsizei(count), parts, nullptr);
+    g.glCompileShader(shader);
+    GLint ok = 0;
+    g.glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    auto log = [&](bool ofShader, GLuint id) {
+      GLint length = 0;
+      (ofShader ? g.glGetShaderiv : g.glGetProgramiv)(id, GL_INFO_LOG_LENGTH, &length);
+      std::string text(size_t(std::max(length, 1)), '\0');
+      (ofShader ? g.glGetShaderInfoLog : g.glGetProgramInfoLog)(id, GLsizei(text.size()), nullptr, text.data());
+      return std::string(text.c_str());
+    };
+    if (!ok) {
+      const std::string text = log(true, shader);
+      g.glDeleteShader(shader);
+      throw RunError(std::string("GPU path tracer: the ") + what + " kernel does not compile on " +
+                     context->description() + " (a bug in sdgbehave; please report it with this log):\n" + text);
+    }
+    const GLuint id = g.glCreateProgram();
+    g.glAttachShader(id, shader);
+    g.glLinkProgram(id);
+    g.glDeleteShader(shader);
+    g.glGetProgramiv(id, GL_LINK_STATUS, &ok);
+    if (!ok)
+      throw RunError(std::string("GPU path tracer: the ") + what + " kernel does not link on " +
+                     context->description() + " (a bug in sdgbehave; please report it with this log):\n" + log(false, id));
+    return id;
+  }
+
+  void compile() {
+    const GlComputeApi& g = gl();
+    const char* parts[] = {kPtCommonGlsl, kPtBsdfGlsl, kPtSceneGlsl, kPtLightsGlsl, kPtTraceGlsl};
+    program = build(parts, std::size(parts), "path tracing");
+    g.glGenBuffers(GLsizei(buffers.size()), buffers.data());
+    // Every block gets a store before the first dispatch, even one a scene leaves empty.
+    for (GLuint b = 0; b < kBindingCount; ++b) upload(Binding(b), nullptr, 0);
+  }
+
+  // denoiser.cpp's passes on the film, each a dispatch over the image.
+  void runDenoiser(int width, int height, int samples, GLuint groupsX, GLuint groupsY) {
+    const GlComputeApi& g = gl();
+    if (!denoiseProgram) {
+      const char* parts[] = {kPtDenoiseGlsl};
+      denoiseProgram = build(parts, 1, "denoising");
+      g.glGenBuffers(1, &denoiseWork);
+    }
+    const size_t pixels = size_t(width) * size_t(height), bytes = 5 * pixels * 4 * sizeof(float);
+    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, denoiseWork);
+    if (bytes > denoiseCapacity) {
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
+      checkMemory("the denoiser's planes");
+      denoiseCapacity = bytes;
+    }
+    g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDenoiseWork, denoiseWork);
+    g.glUseProgram(denoiseProgram);
+    auto set = [&](const char* name, int v) { g.glUniform1i(g.glGetUniformLocation(denoiseProgram, name), v); };
+    auto setF = [&](const char* name, float v) { g.glUniform1f(g.glGetUniformLocation(denoiseProgram, name), v); };
+    set("width", width);
+    set("height", height);
+    set("samples", samples);
+    set("useVariance", denoiseWithVariance ? 1 : 0);
+    setF("sigmaColor", denoise->sigmaColor);
+    setF("sigmaNormal", denoise->sigmaNormal);
+    setF("sigmaDepth", denoise->sigmaDepth);
+    auto pass = [&](int which, int iteration, int source) {
+      set("pass_", which);
+      set("iteration", iteration);
+      set("source", source);
+      g.glDispatchCompute(groupsX, groupsY, 1);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    };
+    pass(0, 0, 0);
+    pass(1, 0, 0);
+    int source = 0;
+    for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) pass(2, i, source);
+    pass(3, 0, source);
+    // The tracer's bindings again for the next frame (binding 2 is its node buffer).
+    g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodes, buffers[kNodes]);
+  }
+
+  void uploadScene(const ParamsHeader& header) {
+    GpuSceneData& s = scene;
+    if (s.meshesChanged) {
+      upload(kNodes, s.meshNodes.data(), s.meshNodes.size() * sizeof(GpuBvhNode));
+      upload(kTriangles, s.triangles.data(), s.triangles.size() * sizeof(float));
+      upload(kVertices, s.vertices.data(), s.vertices.size() * sizeof(float));
+      upload(kIndices, s.indices.data(), s.indices.size() * sizeof(uint32_t));
+      upload(kMeshes, s.meshes.data(), s.meshes.size() * sizeof(GpuMeshRecord));
+      s.meshesChanged = false;
+    }
+    if (s.instancesChanged) {
+      upload(kTopNodes, s.topNodes.data(), s.topNodes.size() * sizeof(GpuBvhNode));
+      upload(kInstances, s.instances.data(), s.instances.size() * sizeof(GpuInstanceRecord));
+      s.instancesChanged = false;
+    }
+    if (s.texelsChanged) {
+      const size_t textureBytes = s.texels.size() * 4, domeBytes = s.domeTexels.size() * 4;
+      capacity[kTexels] = 0;  // reallocated: both parts are written again
+      upload(kTexels, s.texels.data(), textureBytes, 0, textureBytes + domeBytes);
+      upload(kTexels, s.domeTexels.data(), domeBytes, textureBytes);
+      upload(kTextureTable, s.textureTable.data(), s.textureTable.size() * sizeof(int32_t));
+      s.texelsChanged = false;
+    }
+    upload(kMaterials, s.materials.data(), s.materials.size() * sizeof(GpuMaterialRecord));
+    upload(kLights, s.lights.data(), s.lights.size() * sizeof(GpuLightRecord));
+    // Params: the header and the pick cdf every frame; the tables before it only when they changed.
+    const size_t pickOffset = sizeof(ParamsHeader) + size_t(s.dome[3]) * sizeof(float);
+    const size_t total = sizeof(ParamsHeader) + s.tables.size() * sizeof(float);
+    if (s.tablesChanged || total > capacity[kParams]) {
+      capacity[kParams] = 0;
+      upload(kParams, &header, sizeof header, 0, total);
+      upload(kParams, s.tables.data(), s.tables.size() * sizeof(float), sizeof(ParamsHeader));
+      s.tablesChanged = false;
+    } else {
+      upload(kParams, &header, sizeof header);
+      upload(kParams, s.tables.data() + s.dome[3], (s.tables.size() - size_t(s.dome[3])) * sizeof(float), pickOffset);
+    }
+  }
+};
+
+GpuPathTracer::GpuPathTracer(const AssetResolver& assets, const PathTraceSettings& settings)
+    : impl_(std::make_unique<Impl>(assets, settings)) {
+  impl_->settings.samples = std::max(impl_->settings.samples, 1);
+  impl_->settings.maxBounces = std::max(impl_->settings.maxBounces, 0);
+  impl_->context->run([this] { impl_->compile(); });
+}
+
+GpuPathTracer::~GpuPathTracer() {
+  if (!impl_ || !impl_->context) return;
+  try {
+    impl_->context->run([this] {
+      const GlComputeApi& g = impl_->gl();
+      g.glDeleteBuffers(GLsizei(impl_->buffers.size()), impl_->buffers.data());
+      if (impl_->program) g.glDeleteProgram(impl_->program);
+      if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
+      if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
+    });
+  } catch (...) {  // the context is going away with the tracer; nothing to report
+  }
+}
+
+const PathTraceStats& GpuPathTracer::stats() const { return impl_->stats; }
+void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings, bool perPixelVariance) {
+  if (settings && (settings->iterations < 0 || settings->iterations > 16))
+    throw std::invalid_argument("Denoiser: iterations must be 0 to 16");
+  impl_->denoise = settings;
+  impl_->denoiseWithVariance = perPixelVariance;
+}
+void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispatch = std::max(samples, 0); }
+std::string GpuPathTracer::device() const { return impl_->context->description(); }
+bool GpuPathTracer::onGpu() const { return impl_->context->onGpu(); }
+
+void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+                           PathTracedFrame& out) {
+  if (cameraIndex >= list.cameras.size())
+    throw std::invalid_argument("path tracer: camera " + std::to_string(cameraIndex) + " of " +
+                                std::to_string(list.cameras.size()));
+  if (width < 1 || height < 1) throw std::invalid_argument("path tracer: the image size must be at least 1 x 1");
+  Impl& m = *impl_;
+  // On the context's thread: the caller's own GL context (the rasterizer's) is left alone.
+  m.context->run([&] {
+    const auto setupStart = std::chrono::steady_clock::now();
+    const GlComputeApi& g = m.gl();
+    m.scene.update(list);
+    const int samples = m.settings.samples;
+    ParamsHeader header{};
+    cameraPlanes(list.cameras[cameraIndex], width, height, header);
+    const int32_t counts[4] = {m.settings.maxBounces, int32_t(m.scene.lights.size()), int32_t(m.scene.instances.size()),
+                               m.scene.anyLobeMultiplier ? 1 : 0};
+    std::copy(counts, counts + 4, header.counts);
+    header.seed[0] = uint32_t(frameSeed);
+    header.seed[1] = uint32_t(frameSeed >> 32);
+    header.seed[2] = uint32_t(m.scene.topRoot);
+    std::copy(m.scene.dome, m.scene.dome + 4, header.dome);
+    std::copy(m.scene.domeTables, m.scene.domeTables + 4, header.domeTables);
+    header.size[0] = width;
+    header.size[1] = height;
+    m.uploadScene(header);
+    const size_t pixels = size_t(width) * size_t(height);
+    if (m.capacity[kFilm] < pixels * sizeof(FilmPixel)) {
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
+      // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
+      m.checkMemory("the film");
+      m.capacity[kFilm] = pixels * sizeof(FilmPixel);
+    }
+    for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, m.buffers[b]);
+    g.glUseProgram(m.program);
+    g.glFinish();
+
+    const auto traceStart = std::chrono::steady_clock::now();
+    const int perDispatch = m.samplesPerDispatch > 0 ? std::min(m.samplesPerDispatch, samples)
+                                                    : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
+    const GLuint groupsX = GLuint((width + kGroupSize - 1) / kGroupSize), groupsY = GLuint((height + kGroupSize - 1) / kGroupSize);
+    for (int first = 0; first < samples; first += perDispatch) {
+      header.size[2] = first;
+      header.size[3] = std::min(perDispatch, samples - first);
+      header.seed[3] = first == 0 ? 1u : 0u;  // the first dispatch also writes the label planes and clears the sums
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kParams]);
+      g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, &header);
+      g.glDispatchCompute(groupsX, groupsY, 1);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    if (m.denoise) m.runDenoiser(width, height, samples, groupsX, groupsY);
+    m.film.resize(pixels);
+    g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
+    g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(pixels * sizeof(FilmPixel)), m.film.data());
+    const GLenum error = g.glGetError();
+    if (error == GL_OUT_OF_MEMORY) throw GpuUnavailable("GPU path tracer: out of GPU memory while tracing");
+    if (error != GL_NO_ERROR) throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while tracing");
+    const auto traceEnd = std::chrono::steady_clock::now();
+
+    out.width = width;
+    out.height = height;
+    out.radiance.resize(3 * pixels);
+    out.albedo.resize(3 * pixels);
+    out.normal.resize(3 * pixels);
+    out.depth.resize(pixels);
+    out.instance.resize(pixels);
+    out.variance.assign(pixels, 0.0f);
+    PathTraceStats stats;
+    for (size_t p = 0; p < pixels; ++p) {
+      const FilmPixel& f = m.film[p];
+      for (int c = 0; c < 3; ++c) {
+        out.radiance[3 * p + size_t(c)] = m.denoise ? f.sum[c] : f.sum[c] / float(samples);  // denoised: the radiance itself
+        out.albedo[3 * p + size_t(c)] = f.albedo[c];
+        out.normal[3 * p + size_t(c)] = f.normalDepth[c];
+      }
+      out.depth[p] = f.normalDepth[3];
+      if (!m.denoise && samples > 1) {  // path_tracer.cpp's, from float sums
+        const double n = samples;
+        const double mean = (0.2126 * f.sum[0] + 0.7152 * f.sum[1] + 0.0722 * f.sum[2]) / n;
+        out.variance[p] = float(std::max(0.0, double(f.albedo[3]) / n - mean * mean) / (n - 1));
+      }
+      out.instance[p] = f.rays[3];
+      stats.rays += uint64_t(f.rays[0]) | (uint64_t(f.rays[1]) << 32);
+      stats.cameraRays += f.rays[2];
+      stats.droppedSamples += uint64_t(f.sum[3]);
+    }
+    stats.samples = uint64_t(pixels) * uint64_t(samples);
+    stats.seconds = std::chrono::duration<double>(traceEnd - traceStart).count();
+    stats.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
+    stats.threads = 0;
+    m.stats = stats;
+  });
+}
+
+}  // namespace sdg

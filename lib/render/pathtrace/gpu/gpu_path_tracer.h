@@ -1,0 +1,73 @@
+#pragma once
+// sdgbehave's GPU path tracer: the CPU tracer's light transport
+// (path_tracer.h) as OpenGL 4.3+ compute shaders, on its own EGL context
+// (gl_compute.h): a GPU through EGL's device platform, or Mesa's llvmpipe
+// where there is none, so the same kernels are tested in CI.
+//
+// Same inputs, same film: it takes the render list the CPU tracer takes and
+// fills the same PathTracedFrame (radiance, albedo, normal, depth,
+// instance), from the same camera rays, sample streams (sampler.h, hashed
+// with 64-bit arithmetic in 32-bit words), BSDF, lights, dome importance
+// sampling, Russian roulette and next-event estimation with MIS. So both
+// converge to the same image; they are not byte-identical to each other
+// (the GPU's float rounding, transcendentals and fused multiply-adds differ
+// from the CPU's, and its per-pixel sums are float where the CPU's are double).
+//
+// Geometry: one BVH per distinct mesh (4-wide, gpu_bvh.h), built by
+// Embree's builder and uploaded once; a top-level BVH over the instances,
+// rebuilt and uploaded only when an instance moved (gpu_scene.h).
+//
+// Determinism: each pixel is one invocation that adds its samples to its
+// own running sum in sample order; nothing is summed across pixels and
+// no atomics are used, so a frame is byte-identical run to run on the same
+// device and driver, whatever the number of samples per dispatch.
+//
+// Failure: GpuUnavailable (gl_compute.h) when the device has no GL 4.3
+// compute or runs out of memory; RunError, with the driver's log, when a
+// kernel does not compile (a bug: exit 1).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "assets/asset_resolver.h"
+#include "render/pathtrace/denoiser.h"
+#include "render/pathtrace/path_tracer.h"
+
+namespace sdg {
+
+class GpuPathTracer {
+ public:
+  // Brings up the context and compiles the kernel.
+  GpuPathTracer(const AssetResolver& assets, const PathTraceSettings& settings);
+  ~GpuPathTracer();
+  GpuPathTracer(const GpuPathTracer&) = delete;
+  GpuPathTracer& operator=(const GpuPathTracer&) = delete;
+
+  // As PathTracer::render. Callable from any one thread at a time; the GL
+  // work runs on the context's own thread (gl_compute.h), so the caller's
+  // current context (the rasterizer's) is never touched.
+  void render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+              PathTracedFrame& out);
+
+  const PathTraceStats& stats() const;
+  // With a value, render() also runs the denoiser (denoiser.h's filter,
+  // ported to a compute kernel; `threads` is not read) on the GPU before
+  // the frame is read back: out.radiance is then the denoised radiance (and
+  // out.variance is left 0). perPixelVariance: the filter's SVGF mode on the
+  // samples' own variance (DenoiseInputs::variance), else its neighbourhood
+  // estimate. Close to the CPU Denoiser's output on the same film, not
+  // byte-identical.
+  void setDenoiser(const std::optional<DenoiseSettings>& settings, bool perPixelVariance = true);
+  // Samples per pixel in one dispatch; 0 (the default): about a million
+  // paths a dispatch. Changes the timing, never the image.
+  void setSamplesPerDispatch(int samples);
+  // The GL renderer and version strings.
+  std::string device() const;
+  bool onGpu() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sdg

@@ -1,0 +1,124 @@
+#version 450
+// The GPU path tracer's kernel, part 1: buffers, parameters and the sample
+// streams. The parts are joined in this order (gpu_programs.cpp):
+// pt_common, pt_bsdf, pt_scene, pt_lights, pt_trace. Each is a port of the
+// CPU tracer's file named in its header; keep the two in step.
+layout(local_size_x = 8, local_size_y = 8) in;
+
+const float kPi = 3.14159265358979323846;
+const float kInf = uintBitsToFloat(0x7f800000u);
+const float kOneBelowOne = uintBitsToFloat(0x3f7fffffu);  // 0x1.fffffep-1
+
+// One frame's inputs (gpu_frame.cpp writes them, std430), then the float
+// tables: pt_textures.cpp's sRGB table (256 entries from 0), the lights'
+// pick cdf and the dome's sampling tables, at the offsets given here.
+// Sixteen storage blocks is the most a driver must offer, so related arrays
+// share one.
+layout(std430, binding = 0) readonly buffer Params {
+  vec4 camNear0, camNearX, camNearY;  // the near-plane point at pixel (0, 0) and its change per pixel, world
+  vec4 camFar0, camFarX, camFarY;     // the same on the far plane
+  vec4 eye;
+  ivec4 size;        // width, height, first sample, samples in this dispatch
+  ivec4 counts;      // max bounces, light count, instance count, 1 where a light scales the BSDF's lobes apart
+  uvec4 seed;        // frame seed (low, high), top-level root item, label pass (1: write the labels)
+  ivec4 dome;        // width, height (0: no map), first texel (uint words in `texels`), pick cdf offset
+  ivec4 domeTables;  // offsets: row cdf, column cdfs, row cosines, texel solid angles
+  float tables[];
+} params;
+
+// The film, per pixel: the running sum (rgb; w: samples dropped), the
+// label planes, the rays traced. Each pixel is written by its own
+// invocation only, in sample order: no atomics, nothing summed across pixels.
+struct FilmPixel {
+  vec4 sum;
+  vec4 albedo;       // rgb; w: the samples' sum of squared luminance
+  vec4 normalDepth;  // xyz, depth
+  uvec4 rays;        // rays traced (low, high), camera rays, the instance id
+};
+layout(std430, binding = 1) buffer Film { FilmPixel film[]; };
+
+// --- 64-bit words as uvec2 (low, high): the sampler's hashes are 64-bit. ---
+uvec2 xor64(uvec2 a, uvec2 b) { return a ^ b; }
+uvec2 shr64(uvec2 a, int n) {  // 0 < n < 32
+  return uvec2((a.x >> uint(n)) | (a.y << uint(32 - n)), a.y >> uint(n));
+}
+uvec2 mul64(uvec2 a, uvec2 b) {
+  uint hi, lo;
+  umulExtended(a.x, b.x, hi, lo);
+  hi += a.x * b.y + a.y * b.x;
+  return uvec2(lo, hi);
+}
+uvec2 add64(uvec2 a, uvec2 b) {
+  uint carry;
+  uint lo = uaddCarry(a.x, b.x, carry);
+  return uvec2(lo, a.y + b.y + carry);
+}
+
+// sampler.cpp's mixBits (SplitMix64's finaliser) and combine.
+uvec2 mixBits(uvec2 z) {
+  z = xor64(z, shr64(z, 30));
+  z = mul64(z, uvec2(0x1ce4e5b9u, 0xbf58476du));
+  z = xor64(z, shr64(z, 27));
+  z = mul64(z, uvec2(0x133111ebu, 0x94d049bbu));
+  return xor64(z, shr64(z, 31));
+}
+uvec2 combine(uvec2 seed, uvec2 value) { return mixBits(xor64(seed, mixBits(add64(value, uvec2(0x7f4a7c15u, 0x9e3779b9u))))); }
+
+uint laineKarrasPermutation(uint x, uint seed) {
+  uint oddMultiplier = mixBits(uvec2(seed, 0u)).y | 1u;
+  x ^= x * 0x2a9e6f52u;
+  x += seed;
+  x *= oddMultiplier;
+  x ^= x * 0x7b1c3ad4u;
+  x ^= x * 0xd6e8feb6u;
+  return x;
+}
+uint nestedUniformScramble(uint value, uint seed) {
+  return bitfieldReverse(laineKarrasPermutation(bitfieldReverse(value), seed));
+}
+uint sobol(uint index, int dimension) {
+  if (dimension == 0) return bitfieldReverse(index);
+  uint direction = 1u << 31;
+  uint result = 0u;
+  for (; index != 0u; index >>= 1, direction ^= direction >> 1)
+    if ((index & 1u) != 0u) result ^= direction;
+  return result;
+}
+float toUnitFloat(uint fixedPoint) { return float(fixedPoint >> 8) * (1.0 / 16777216.0); }
+
+// PixelSampler: the same stream as the CPU's for (seed, x, y, sample, slot).
+struct Sampler {
+  uvec2 pixelSeed;
+  uint index;
+  uint slot;
+};
+Sampler pixelSampler(uvec2 frameSeed, uint x, uint y) {
+  Sampler s;
+  s.pixelSeed = combine(combine(mixBits(frameSeed), uvec2(x, 0u)), uvec2(y, 0u));
+  s.index = 0u;
+  s.slot = 0u;
+  return s;
+}
+void startSample(inout Sampler s, uint index) {
+  s.index = index;
+  s.slot = 0u;
+}
+uint slotSeed(inout Sampler s) {
+  uint seed = combine(s.pixelSeed, uvec2(s.slot, 0u)).x;
+  s.slot++;
+  return seed;
+}
+vec2 next2D(inout Sampler s) {
+  uint seed = slotSeed(s);
+  uint shuffled = nestedUniformScramble(s.index, seed);
+  return vec2(toUnitFloat(nestedUniformScramble(sobol(shuffled, 0), combine(uvec2(seed, 0u), uvec2(1u, 0u)).x)),
+              toUnitFloat(nestedUniformScramble(sobol(shuffled, 1), combine(uvec2(seed, 0u), uvec2(2u, 0u)).x)));
+}
+float next1D(inout Sampler s) {
+  uint seed = slotSeed(s);
+  uint shuffled = nestedUniformScramble(s.index, seed);
+  return toUnitFloat(nestedUniformScramble(sobol(shuffled, 0), combine(uvec2(seed, 0u), uvec2(1u, 0u)).x));
+}
+
+float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+float maxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }

@@ -1,0 +1,351 @@
+// Part 3: the scene. Geometry (embree_scene.cpp's geometry()), materials
+// and textures (pt_materials.cpp, pt_textures.cpp), and the traversal of
+// the two-level BVH that gpu_bvh.cpp builds with Embree's BVH builder:
+// 4-wide nodes holding their children's boxes, a top level over the
+// instances, one bottom level per distinct mesh.
+
+// A 4-wide node: the children's boxes as structure-of-arrays rows, and the
+// children: >= 0 an inner node (index from the level's base), kEmptyChild
+// no child, otherwise a leaf ~(first << 4 | count - 1).
+struct Node {
+  vec4 loX, hiX, loY, hiY, loZ, hiZ;
+  ivec4 child;
+};
+const int kEmptyChild = 0x7fffffff;
+layout(std430, binding = 2) readonly buffer Nodes { Node nodes[]; };           // the meshes' levels
+layout(std430, binding = 3) readonly buffer TopNodes { Node topNodes[]; };    // the frame's level over the instances
+// Triangles in leaf order: v0 (w: the mesh's own triangle index, as a float: exact below 2^24), edge 1, edge 2; mesh space.
+layout(std430, binding = 4) readonly buffer Triangles { vec4 triangles[]; };
+// Vertices: position (w: u), normal (w: v).
+layout(std430, binding = 5) readonly buffer Vertices { vec4 vertices[]; };
+// Per triangle in the mesh's own order: its three vertex indices and its part.
+layout(std430, binding = 6) readonly buffer Indices { uvec4 indices[]; };
+struct Mesh {
+  ivec4 bases;  // nodes, leaf-order triangles, indices, vertices
+  ivec4 flags;  // has normals, has uvs, root item (0, or a leaf code when the whole mesh is one leaf), -
+};
+layout(std430, binding = 7) readonly buffer Meshes { Mesh meshes[]; };
+struct Instance {
+  vec4 world[3];   // rows of world from local
+  vec4 local[3];   // rows of local from world
+  vec4 normal[3];  // rows of the normal matrix
+  ivec4 ids;       // mesh, first material, material count, instance id
+  ivec4 flags;     // cut-out, -, -, -
+};
+layout(std430, binding = 8) readonly buffer Instances { Instance instances[]; };
+struct Material {
+  vec4 baseColor;   // rgb, roughness
+  vec4 scalars;     // metallic, roughness influence, metallic influence, normal scale
+  vec4 opacity;     // constant, cut-off, cos rotate, sin rotate
+  vec4 placement;   // texture scale xy, specular level, -
+  ivec4 maps;       // base, roughness, metallic, normal (-1: none)
+  ivec4 mapInfo;    // opacity map, roughness channel, metallic channel, opacity source (0 none, 1 constant, 2 map, 3 base alpha)
+  ivec4 modes;      // part material, triplanar, -, -
+};
+layout(std430, binding = 9) readonly buffer Materials { Material materials[]; };
+layout(std430, binding = 10) readonly buffer TextureTable { ivec4 textures[]; };  // first texel, width, height, sRGB
+layout(std430, binding = 11) readonly buffer Texels { uint texels[]; };  // RGBA8 texels; a dome's as 4 float words
+
+// --- Textures: PtTexture::sample ---
+vec4 texel(ivec4 t, uint x, uint y) {
+  uint p = texels[uint(t.x) + y * uint(t.y) + x];
+  uvec4 c = uvec4(p & 255u, (p >> 8) & 255u, (p >> 16) & 255u, p >> 24);
+  if (t.w != 0) return vec4(params.tables[c.x], params.tables[c.y], params.tables[c.z], float(c.w) * (1.0 / 255.0));
+  return vec4(c) * (1.0 / 255.0);
+}
+uint wrapIndex(int i, int size) {
+  int m = i % size;
+  return uint(m < 0 ? m + size : m);
+}
+vec4 sampleTexture(int index, vec2 uv) {
+  ivec4 t = textures[index];
+  if (isnan(uv.x) || isinf(uv.x) || isnan(uv.y) || isinf(uv.y)) return texel(t, 0u, 0u);
+  float x = (uv.x - floor(uv.x)) * float(t.y) - 0.5;
+  float y = (uv.y - floor(uv.y)) * float(t.z) - 0.5;
+  float fx = floor(x), fy = floor(y);
+  float ax = x - fx, ay = y - fy;
+  int ix = int(fx), iy = int(fy);
+  uint x0 = wrapIndex(ix, t.y), x1 = wrapIndex(ix + 1, t.y);
+  uint y0 = wrapIndex(iy, t.z), y1 = wrapIndex(iy + 1, t.z);
+  return (texel(t, x0, y0) * (1.0 - ax) + texel(t, x1, y0) * ax) * (1.0 - ay) +
+         (texel(t, x0, y1) * (1.0 - ax) + texel(t, x1, y1) * ax) * ay;
+}
+
+// --- Geometry: EmbreeScene::geometry ---
+struct Geometry {
+  vec3 position, geometricNormal, shadingNormal;
+  vec2 uv;
+  vec3 edge1, edge2;
+  vec2 uvEdge1, uvEdge2;
+  uint part;
+};
+vec3 rowsTimes(vec4 rows[3], vec3 p, float w) {
+  vec4 h = vec4(p, w);
+  return vec3(dot(rows[0], h), dot(rows[1], h), dot(rows[2], h));
+}
+Geometry surfaceGeometry(uint instance, uint triangle, float u, float v) {
+  Instance inst = instances[instance];
+  Mesh mesh = meshes[inst.ids.x];
+  uvec4 tri = indices[uint(mesh.bases.z) + triangle];
+  uint vb = uint(mesh.bases.w);
+  vec4 a0 = vertices[2u * (vb + tri.x)], a1 = vertices[2u * (vb + tri.y)], a2 = vertices[2u * (vb + tri.z)];
+  float w = 1.0 - u - v;
+  Geometry g;
+  vec3 p0 = rowsTimes(inst.world, a0.xyz, 1.0), p1 = rowsTimes(inst.world, a1.xyz, 1.0), p2 = rowsTimes(inst.world, a2.xyz, 1.0);
+  g.position = w * p0 + u * p1 + v * p2;
+  g.edge1 = p1 - p0;
+  g.edge2 = p2 - p0;
+  vec3 c = cross(g.edge1, g.edge2);
+  float cn = length(c);
+  g.geometricNormal = cn > 0.0 ? c / cn : vec3(0.0, 0.0, 1.0);
+  g.shadingNormal = g.geometricNormal;
+  if (mesh.flags.x != 0) {
+    vec4 b0 = vertices[2u * (vb + tri.x) + 1u], b1 = vertices[2u * (vb + tri.y) + 1u], b2 = vertices[2u * (vb + tri.z) + 1u];
+    vec3 n = rowsTimes(inst.normal, w * b0.xyz + u * b1.xyz + v * b2.xyz, 0.0);
+    float len = length(n);
+    if (len > 0.0 && !isinf(len) && !isnan(len)) g.shadingNormal = n / len;
+  }
+  if (mesh.flags.y != 0) {
+    vec2 t0 = vec2(a0.w, vertices[2u * (vb + tri.x) + 1u].w), t1 = vec2(a1.w, vertices[2u * (vb + tri.y) + 1u].w),
+         t2 = vec2(a2.w, vertices[2u * (vb + tri.z) + 1u].w);
+    g.uv = w * t0 + u * t1 + v * t2;
+    g.uvEdge1 = t1 - t0;
+    g.uvEdge2 = t2 - t0;
+  } else {
+    g.uv = g.uvEdge1 = g.uvEdge2 = vec2(0.0);
+  }
+  g.part = tri.w;
+  return g;
+}
+
+// --- Materials: pt_materials.cpp ---
+Material materialOf(uint instance, uint part) {
+  ivec4 ids = instances[instance].ids;
+  return materials[ids.y + min(int(part), ids.z - 1)];
+}
+vec2 transformUv(Material m, vec2 uv) {
+  vec2 s = uv * m.placement.xy;
+  return vec2(m.opacity.z * s.x - m.opacity.w * s.y, m.opacity.w * s.x + m.opacity.z * s.y);
+}
+// Written as loops around one texture read, each read once in the
+// compiled kernel: GLSL inlines every call, and the kernel's size is what
+// a driver's compile time (llvmpipe's above all) grows with.
+vec4 sampleMap(Material m, int map, Geometry g, vec3 n) {
+  bool triplanar = m.modes.y != 0;
+  vec3 w = abs(n);
+  w /= (w.x + w.y + w.z);
+  vec3 p = g.position;
+  vec4 sum = vec4(0.0);
+  for (int k = 0; k < (triplanar ? 3 : 1); ++k) {
+    vec2 uv = !triplanar ? g.uv : (k == 0 ? p.yz : (k == 1 ? p.xz : p.xy));
+    vec4 t = sampleTexture(map, transformUv(m, uv));
+    sum = k == 0 ? (triplanar ? t * w.x : t) : sum + t * w[k];
+  }
+  return sum;
+}
+vec3 mappedNormal(Material m, Geometry g, vec3 n) {
+  vec2 duv1 = transformUv(m, g.uvEdge1), duv2 = transformUv(m, g.uvEdge2);
+  vec3 perp2 = cross(g.edge2, n), perp1 = cross(n, g.edge1);
+  vec3 t = perp2 * duv1.x + perp1 * duv2.x;
+  vec3 b = perp2 * duv1.y + perp1 * duv2.y;
+  if (dot(n, cross(g.edge1, g.edge2)) < 0.0) {
+    t = -t;
+    b = -b;
+  }
+  float longest2 = max(dot(t, t), dot(b, b));
+  float scale = 1.0 / sqrt(max(longest2, 1e-20));
+  vec4 tx = sampleTexture(m.maps.w, transformUv(m, g.uv));
+  float ns = m.scalars.w;
+  vec3 tilt = vec3(ns * (2.0 * tx.x - 1.0), ns * (2.0 * tx.y - 1.0), 2.0 * tx.z - 1.0);
+  vec3 mapped = t * (scale * tilt.x) - b * (scale * tilt.y) + n * tilt.z;
+  float length2 = dot(mapped, mapped);
+  return length2 > 1e-12 && !isinf(length2) && !isnan(length2) ? mapped / sqrt(length2) : n;
+}
+bool surfaceOpaque(Material m, Geometry g) {
+  float o = m.opacity.x;
+  int source = m.mapInfo.w;
+  if (source == 0) return true;
+  if (source >= 2) {
+    vec4 t = sampleMap(m, source == 2 ? m.mapInfo.x : m.maps.x, g, g.shadingNormal);
+    o *= source == 2 ? t.x : t.w;
+  }
+  return o >= m.opacity.y;
+}
+struct Shaded {
+  vec3 baseColor;
+  float metallic, roughness, specularLevel;
+  vec3 normal, albedo;
+};
+Shaded shadeSurface(Material m, Geometry g, vec3 towardViewer) {
+  vec3 n = dot(g.shadingNormal, towardViewer) < 0.0 ? -g.shadingNormal : g.shadingNormal;
+  float roughness = m.baseColor.w, metallic = m.scalars.x;
+  bool part = m.modes.x != 0;
+  Shaded s;
+  s.albedo = m.baseColor.xyz;
+  // The roughness, metallic and base colour maps, in one loop (see sampleMap).
+  for (int k = 0; k < 3; ++k) {
+    int map = k == 0 ? m.maps.y : (k == 1 ? m.maps.z : m.maps.x);
+    if (map < 0) continue;
+    vec4 t = sampleMap(m, map, g, n);
+    if (k == 0) {
+      float v = t[m.mapInfo.y];
+      roughness = part ? roughness * v : roughness + (v - roughness) * m.scalars.y;
+    } else if (k == 1) {
+      float v = t[m.mapInfo.z];
+      metallic = part ? metallic * v : metallic + (v - metallic) * m.scalars.z;
+    } else {
+      s.albedo = t.xyz;
+    }
+  }
+  s.baseColor = s.albedo;
+  s.roughness = clamp(roughness, 0.0, 1.0);
+  s.metallic = clamp(metallic, 0.0, 1.0);
+  s.specularLevel = m.placement.z;
+  if (m.maps.w >= 0) n = mappedNormal(m, g, n);
+  const float kMinCosine = 0.01;
+  float c = dot(n, towardViewer);
+  if (c < kMinCosine) n = normalize(n + (kMinCosine - c) * towardViewer);
+  s.normal = n;
+  return s;
+}
+
+// --- Traversal ---
+struct Hit {
+  uint instance, triangle;
+  float u, v, t;
+};
+
+// The entry distance of the ray into the four boxes (kInf where missed).
+// The far distance is pushed out by a few ulps, as robust traversal does,
+// so a box of zero thickness (a plane) is still entered.
+vec4 boxEntry(Node n, vec3 o, vec3 inv, float tMin, float tMax) {
+  vec4 tx0 = (n.loX - o.x) * inv.x, tx1 = (n.hiX - o.x) * inv.x;
+  vec4 ty0 = (n.loY - o.y) * inv.y, ty1 = (n.hiY - o.y) * inv.y;
+  vec4 tz0 = (n.loZ - o.z) * inv.z, tz1 = (n.hiZ - o.z) * inv.z;
+  vec4 tNear = max(max(min(tx0, tx1), min(ty0, ty1)), max(min(tz0, tz1), vec4(tMin)));
+  vec4 tFar = min(min(max(tx0, tx1), max(ty0, ty1)), min(max(tz0, tz1), vec4(tMax))) * 1.0000004;
+  vec4 result;
+  for (int k = 0; k < 4; ++k) result[k] = (tNear[k] <= tFar[k] && n.child[k] != kEmptyChild) ? tNear[k] : kInf;
+  return result;
+}
+
+// Möller-Trumbore with Embree's barycentrics (p = (1-u-v) p0 + u p1 + v p2).
+bool hitTriangle(vec3 o, vec3 d, vec4 v0, vec4 e1, vec4 e2, float tMin, float tMax, out float t, out float u, out float v) {
+  vec3 p = cross(d, e2.xyz);
+  float det = dot(e1.xyz, p);
+  t = u = v = 0.0;
+  if (det == 0.0) return false;
+  float invDet = 1.0 / det;
+  vec3 s = o - v0.xyz;
+  u = dot(s, p) * invDet;
+  if (u < 0.0 || u > 1.0) return false;
+  vec3 q = cross(s, e1.xyz);
+  v = dot(d, q) * invDet;
+  if (v < 0.0 || u + v > 1.0) return false;
+  t = dot(e2.xyz, q) * invDet;
+  return t > tMin && t < tMax;
+}
+
+bool opaqueAt(uint instance, uint triangle, float u, float v) {
+  Geometry g = surfaceGeometry(instance, triangle, u, v);
+  return surfaceOpaque(materialOf(instance, g.part), g);
+}
+
+const int kStackSize = 64;
+
+// The closest hit (or, with anyHit, any hit) of one instance's mesh; the
+// ray in world space is taken into the mesh's space unnormalised, so t is
+// the same in both.
+bool traceMesh(uint instance, vec3 worldO, vec3 worldD, float tMin, inout float tMax, bool anyHit, inout Hit hit) {
+  Instance inst = instances[instance];
+  Mesh mesh = meshes[inst.ids.x];
+  bool cutOut = inst.flags.x != 0;
+  vec3 o = rowsTimes(inst.local, worldO, 1.0), d = rowsTimes(inst.local, worldD, 0.0);
+  vec3 inv = 1.0 / d;
+  int nodeBase = mesh.bases.x, triBase = mesh.bases.y;
+  int stack[kStackSize];
+  int top = 0;
+  stack[top++] = mesh.flags.z;
+  bool found = false;
+  while (top > 0) {
+    int item = stack[--top];
+    if (item < 0) {  // a leaf
+      int code = ~item;
+      int first = code >> 4, count = (code & 15) + 1;
+      for (int k = 0; k < count; ++k) {
+        int at = 3 * (triBase + first + k);
+        float t, u, v;
+        if (!hitTriangle(o, d, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
+        uint triangle = uint(triangles[at].w);
+        if (cutOut && !opaqueAt(instance, triangle, u, v)) continue;
+        tMax = t;
+        hit.instance = instance;
+        hit.triangle = triangle;
+        hit.u = u;
+        hit.v = v;
+        hit.t = t;
+        found = true;
+        if (anyHit) return true;
+      }
+      continue;
+    }
+    Node n = nodes[nodeBase + item];
+    vec4 entry = boxEntry(n, o, inv, tMin, tMax);
+    // Push the farther children first, so the nearest is visited next.
+    for (int pass = 0; pass < 4; ++pass) {
+      int best = -1;
+      float bestT = -1.0;
+      for (int k = 0; k < 4; ++k)
+        if (entry[k] < kInf && entry[k] > bestT) {
+          best = k;
+          bestT = entry[k];
+        }
+      if (best < 0) break;
+      entry[best] = kInf;
+      if (top < kStackSize) stack[top++] = n.child[best];
+    }
+  }
+  return found;
+}
+
+// Counted in the pixel's ray counter by the callers.
+bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
+  hit.instance = hit.triangle = 0u;
+  hit.u = hit.v = hit.t = 0.0;
+  if (params.counts.z == 0) return false;
+  vec3 inv = 1.0 / d;
+  int stack[kStackSize];
+  int top = 0;
+  stack[top++] = int(params.seed.z);
+  bool found = false;
+  while (top > 0) {
+    int item = stack[--top];
+    if (item < 0) {
+      int code = ~item;
+      int first = code >> 4, count = (code & 15) + 1;
+      for (int k = 0; k < count; ++k) {
+        // The instances are stored in the top level's leaf order.
+        if (traceMesh(uint(first + k), o, d, tMin, tMax, anyHit, hit)) {
+          found = true;
+          if (anyHit) return true;
+        }
+      }
+      continue;
+    }
+    Node n = topNodes[item];
+    vec4 entry = boxEntry(n, o, inv, tMin, tMax);
+    for (int pass = 0; pass < 4; ++pass) {
+      int best = -1;
+      float bestT = -1.0;
+      for (int k = 0; k < 4; ++k)
+        if (entry[k] < kInf && entry[k] > bestT) {
+          best = k;
+          bestT = entry[k];
+        }
+      if (best < 0) break;
+      entry[best] = kInf;
+      if (top < kStackSize) stack[top++] = n.child[best];
+    }
+  }
+  return found;
+}

@@ -1,0 +1,259 @@
+// The GPU path tracer (render/pathtrace/gpu) against the CPU tracer: on
+// Mesa's llvmpipe in CI, a real GPU elsewhere. Both trace the same sample
+// streams, so with one seed their images agree far closer than two seeds
+// of either tracer do; block means agree within a fraction of their noise;
+// reruns are byte-identical whatever the samples per dispatch.
+#include "pt_test_scenes.h"
+
+#include <cstring>
+#include <memory>
+
+#include "render/pathtrace/gpu/gl_compute.h"
+#include "render/pathtrace/gpu/gpu_path_tracer.h"
+#include "render/test_images.h"
+
+using namespace sdg;
+using namespace sdg::pttest;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A Cornell-like room: white floor, back and ceiling, red and green walls, a
+// white box and a metal ball, an area lamp under the ceiling.
+const char* kCornell = R"(version: 1
+prims:
+  /Looks: {type: Scope}
+  /Looks/White: {type: Material, inputs:diffuse_color_constant: [0.73, 0.73, 0.73], inputs:reflection_roughness_constant: 1.0}
+  /Looks/Red: {type: Material, inputs:diffuse_color_constant: [0.65, 0.05, 0.05], inputs:reflection_roughness_constant: 1.0}
+  /Looks/Green: {type: Material, inputs:diffuse_color_constant: [0.12, 0.45, 0.15], inputs:reflection_roughness_constant: 1.0}
+  /Looks/Metal: {type: Material, inputs:diffuse_color_constant: [0.9, 0.8, 0.6], inputs:reflection_roughness_constant: 0.3, inputs:metallic_constant: 1}
+  /Floor: {type: Plane, width: 2, length: 2, material: /Looks/White}
+  /Ceiling: {type: Plane, width: 2, length: 2, translate: [0, 0, 2], material: /Looks/White}
+  /Back: {type: Plane, axis: Y, width: 2, length: 2, translate: [0, 1, 1], material: /Looks/White}
+  /Left: {type: Plane, axis: X, width: 2, length: 2, translate: [-1, 0, 1], material: /Looks/Red}
+  /Right: {type: Plane, axis: X, width: 2, length: 2, translate: [1, 0, 1], material: /Looks/Green}
+  /Box: {type: Cube, size: 0.6, translate: [0.35, 0.3, 0.3], rotateZ: 20, material: /Looks/White}
+  /Ball: {type: Sphere, radius: 0.3, translate: [-0.4, -0.1, 0.3], material: /Looks/Metal}
+  /Lamp: {type: RectLight, inputs:width: 0.5, inputs:height: 0.5, inputs:intensity: 30, translate: [0, 0, 1.98]}
+  /Camera: {type: Camera, focalLength: 18, clippingRange: [0.1, 100], translate: [0, -2.6, 1], rotateX: 90}
+)";
+
+std::unique_ptr<GpuPathTracer> gpuTracer(const PathTraceSettings& settings) {
+  try {
+    return std::make_unique<GpuPathTracer>(testAssets(), settings);
+  } catch (const GpuUnavailable& e) {
+    WARN("skipped: " << e.what());
+    return nullptr;
+  }
+}
+
+PathTracedFrame gpuTrace(GpuPathTracer& tracer, const RenderList& list, int w, int h, uint64_t seed) {
+  PathTracedFrame f;
+  tracer.render(list, 0, w, h, seed, f);
+  return f;
+}
+
+// The share of pixels whose label ray hit the same instance in both frames.
+double sameInstanceShare(const PathTracedFrame& a, const PathTracedFrame& b) {
+  size_t same = 0;
+  for (size_t p = 0; p < a.instance.size(); ++p) same += a.instance[p] == b.instance[p];
+  return double(same) / double(a.instance.size());
+}
+
+double rms(const PathTracedFrame& a, const PathTracedFrame& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.radiance.size(); ++i) sum += double(a.radiance[i] - b.radiance[i]) * (a.radiance[i] - b.radiance[i]);
+  return std::sqrt(sum / double(a.radiance.size()));
+}
+
+double meanOf(const PathTracedFrame& f) {
+  double sum = 0;
+  for (float v : f.radiance) sum += v;
+  return sum / double(f.radiance.size());
+}
+
+// The largest difference of 8 x 8 block means (all channels), over the image's mean.
+double worstBlockBias(const PathTracedFrame& a, const PathTracedFrame& b) {
+  double worst = 0;
+  for (int by = 0; by + 8 <= a.height; by += 8)
+    for (int bx = 0; bx + 8 <= a.width; bx += 8) {
+      double sa = 0, sb = 0;
+      for (int y = by; y < by + 8; ++y)
+        for (int x = bx; x < bx + 8; ++x)
+          for (int c = 0; c < 3; ++c) {
+            sa += a.radiance[3 * size_t(y * a.width + x) + size_t(c)];
+            sb += b.radiance[3 * size_t(y * a.width + x) + size_t(c)];
+          }
+      worst = std::max(worst, std::abs(sa - sb) / (8 * 8 * 3));
+    }
+  return worst / meanOf(b);
+}
+
+// Compares the tracers at one size and sample count (nothing where the GPU tracer cannot run).
+void checkAgreement(const RenderList& list, int w, int h, int samples) {
+  PathTraceSettings settings;
+  settings.samples = samples;
+  settings.maxBounces = 8;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  INFO("device: " << gpu->device());
+  const PathTracedFrame cpu1 = trace(list, w, h, settings, 1), cpu2 = trace(list, w, h, settings, 2);
+  const PathTracedFrame gpu1 = gpuTrace(*gpu, list, w, h, 1), gpu2 = gpuTrace(*gpu, list, w, h, 2);
+  // Labels: the same centre rays and surfaces.
+  CHECK(sameInstanceShare(gpu1, cpu1) >= 0.98);
+  const double noise = rms(cpu1, cpu2);
+  const double sameSeed = rms(gpu1, cpu1), otherSeed = rms(gpu2, cpu1);
+  INFO("rms: cpu seed 1 vs 2 " << noise << ", gpu vs cpu same seed " << sameSeed << ", other seed " << otherSeed);
+  INFO("means: cpu " << meanOf(cpu1) << " gpu " << meanOf(gpu1));
+  INFO("block bias: same seed " << worstBlockBias(gpu1, cpu1) << ", cpu seeds " << worstBlockBias(cpu2, cpu1));
+  REQUIRE(noise > 0);
+  // One sample stream: most paths are the same paths; where rounding sends
+  // one elsewhere, it is an independent sample of the same pixel.
+  CHECK(sameSeed < 0.5 * noise);
+  // Independent streams: the pixels differ by the tracers' noise, no more.
+  CHECK(otherSeed < 1.15 * noise);
+  CHECK(std::abs(meanOf(gpu1) / meanOf(cpu1) - 1) < 0.01);
+  CHECK(worstBlockBias(gpu1, cpu1) < 0.5 * worstBlockBias(cpu2, cpu1) + 0.005);
+}
+
+}  // namespace
+
+TEST_CASE("gpu path tracer: agrees with the CPU tracer on a Cornell-like box", "[pathtrace][gpu]") {
+  checkAgreement(renderListOf(kCornell), 32, 32, 16);
+}
+
+TEST_CASE("gpu path tracer: agrees with the CPU tracer with textures, a normal map, a cut-out and a dome map",
+          "[pathtrace][gpu]") {
+  const fs::path dir = scratchFolder("gpu_textures");
+  test::writeSectorSky(dir / "sky.hdr");
+  test::writePng(dir / "checker.png", 8, 8, [](int x, int y) {
+    const uint8_t v = ((x / 2 + y / 2) % 2) ? 220 : 40;
+    return std::array<uint8_t, 4>{v, uint8_t(255 - v), 90, 255};
+  });
+  test::writePng(dir / "bumps.png", 8, 8, [](int x, int y) {
+    return std::array<uint8_t, 4>{uint8_t(128 + 60 * ((x % 4) - 1.5) / 1.5), uint8_t(128 + 40 * ((y % 4) - 1.5) / 1.5), 230, 255};
+  });
+  test::writePng(dir / "holes.png", 8, 8, [](int x, int y) {
+    const uint8_t v = (x + y) % 4 == 0 ? 0 : 255;
+    return std::array<uint8_t, 4>{v, v, v, 255};
+  });
+  const std::string yaml = "version: 1\nprims:\n  /Looks: {type: Scope}\n"
+                           "  /Looks/Floor: {type: Material, inputs:diffuse_texture: " + (dir / "checker.png").string() +
+                           ", inputs:normalmap_texture: " + (dir / "bumps.png").string() +
+                           ", inputs:reflection_roughness_constant: 0.6, inputs:texture_scale: [3, 3]}\n"
+                           "  /Looks/Card: {type: Material, inputs:diffuse_color_constant: [0.2, 0.3, 0.8], "
+                           "inputs:enable_opacity: true, inputs:enable_opacity_texture: true, inputs:opacity_threshold: 0.5, "
+                           "inputs:opacity_texture: " + (dir / "holes.png").string() + R"(}
+  /Looks/Gold: {type: Material, inputs:diffuse_color_constant: [0.9, 0.7, 0.3], inputs:reflection_roughness_constant: 0.25, inputs:metallic_constant: 1}
+  /Floor: {type: Plane, width: 6, length: 6, material: /Looks/Floor}
+  /Card: {type: Plane, axis: Y, width: 1.5, length: 1.5, translate: [-0.6, 0.3, 0.75], material: /Looks/Card}
+  /Ball: {type: Sphere, radius: 0.4, translate: [0.6, 0, 0.4], material: /Looks/Gold}
+  /Sky: {type: DomeLight, inputs:intensity: 1, inputs:texture:file: )" + (dir / "sky.hdr").string() + R"(}
+  /Sun: {type: DistantLight, inputs:angle: 3, inputs:intensity: 3, rotateXYZ: [35, 15, 0]}
+  /Camera: {type: Camera, focalLength: 20, clippingRange: [0.1, 100], translate: [0, -3.5, 1.4], rotateX: 72}
+)";
+  checkAgreement(renderListOf(yaml), 32, 32, 16);
+}
+
+TEST_CASE("gpu path tracer: agrees with the CPU tracer on specular_level, treatAsPoint and the lights' lobe multipliers",
+          "[pathtrace][gpu]") {
+  std::string yaml = kCornell;
+  yaml.replace(yaml.find("inputs:reflection_roughness_constant: 1.0}"), 42,
+               "inputs:reflection_roughness_constant: 0.4, inputs:specular_level: 0.9}");
+  const std::string lamp = "inputs:intensity: 30,";
+  yaml.replace(yaml.find(lamp), lamp.size(), lamp + " inputs:diffuse: 0.4, inputs:specular: 3,");
+  yaml += "  /Bulb: {type: SphereLight, inputs:radius: 0.05, inputs:intensity: 200, treatAsPoint: true, "
+          "translate: [0.5, -0.5, 1.5]}\n";
+  checkAgreement(renderListOf(yaml), 32, 32, 16);
+}
+
+TEST_CASE("gpu path tracer: byte-identical reruns, whatever the samples per dispatch", "[pathtrace][gpu]") {
+  PathTraceSettings settings;
+  settings.samples = 6;
+  settings.maxBounces = 6;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  const RenderList list = renderListOf(kCornell);
+  const PathTracedFrame a = gpuTrace(*gpu, list, 24, 16, 7);
+  gpu->setSamplesPerDispatch(1);
+  const PathTracedFrame b = gpuTrace(*gpu, list, 24, 16, 7);
+  gpu->setSamplesPerDispatch(4);
+  const PathTracedFrame c = gpuTrace(*gpu, list, 24, 16, 7);
+  for (const PathTracedFrame* other : {&b, &c}) {
+    CHECK(std::memcmp(a.radiance.data(), other->radiance.data(), a.radiance.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(a.albedo.data(), other->albedo.data(), a.albedo.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(a.normal.data(), other->normal.data(), a.normal.size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(a.depth.data(), other->depth.data(), a.depth.size() * sizeof(float)) == 0);
+    CHECK(a.instance == other->instance);
+  }
+  // A fresh tracer (everything uploaded again) gives the same bytes; another seed does not.
+  auto again = gpuTracer(settings);
+  REQUIRE(again);
+  const PathTracedFrame d = gpuTrace(*again, list, 24, 16, 7);
+  CHECK(std::memcmp(a.radiance.data(), d.radiance.data(), a.radiance.size() * sizeof(float)) == 0);
+  const PathTracedFrame e = gpuTrace(*again, list, 24, 16, 8);
+  CHECK(std::memcmp(a.radiance.data(), e.radiance.data(), a.radiance.size() * sizeof(float)) != 0);
+  CHECK(gpu->stats().rays > gpu->stats().cameraRays);
+}
+
+TEST_CASE("gpu path tracer: a moved instance moves in the image; the meshes stay uploaded", "[pathtrace][gpu]") {
+  PathTraceSettings settings;
+  settings.samples = 1;
+  settings.maxBounces = 1;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  RenderList list = renderListOf(kCornell);
+  const PathTracedFrame before = gpuTrace(*gpu, list, 32, 32, 1);
+  size_t ball = 0;
+  for (size_t i = 0; i < list.items.size(); ++i)
+    if (list.items[i].primPath == "/Ball") ball = i;
+  const uint32_t id = list.items[ball].instanceId;
+  list.items[ball].worldFromLocal(0, 3) += 0.8;  // to the right
+  const PathTracedFrame after = gpuTrace(*gpu, list, 32, 32, 1);
+  auto centreX = [&](const PathTracedFrame& f) {
+    double sum = 0, n = 0;
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x)
+        if (f.instance[size_t(y * f.width + x)] == id) {
+          sum += x;
+          n += 1;
+        }
+    return n > 0 ? sum / n : -1.0;
+  };
+  CHECK(centreX(before) > 0);
+  CHECK(centreX(after) > centreX(before) + 4);
+  // The CPU tracer sees the moved ball in the same pixels.
+  const PathTracedFrame cpu = trace(list, 32, 32, settings, 1);
+  CHECK(sameInstanceShare(after, cpu) >= 0.98);
+}
+
+TEST_CASE("gpu path tracer: the denoiser on the GPU matches the CPU denoiser on the same film", "[pathtrace][gpu]") {
+  PathTraceSettings settings;
+  settings.samples = 4;
+  settings.maxBounces = 6;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  const RenderList list = renderListOf(kCornell);
+  const PathTracedFrame raw = gpuTrace(*gpu, list, 32, 32, 3);
+  for (const bool perPixelVariance : {false, true}) {
+    INFO((perPixelVariance ? "the samples' own variance" : "the neighbourhood's noise estimate"));
+    gpu->setDenoiser(DenoiseSettings{}, perPixelVariance);
+    const PathTracedFrame denoised = gpuTrace(*gpu, list, 32, 32, 3);
+    CHECK(denoised.instance == raw.instance);
+    Denoiser cpu{DenoiseSettings{}};
+    PathTracedFrame reference = raw;
+    cpu.run({raw.width, raw.height, raw.radiance.data(), raw.albedo.data(), raw.normal.data(), raw.depth.data(),
+             raw.instance.data(), perPixelVariance ? raw.variance.data() : nullptr},
+            reference.radiance.data());
+    // Against the CPU filter: the same image up to float rounding (exp, pow, the variance's sums).
+    double worst = 0;
+    for (size_t i = 0; i < reference.radiance.size(); ++i)
+      worst = std::max(worst, double(std::abs(denoised.radiance[i] - reference.radiance[i])) /
+                                  (std::abs(reference.radiance[i]) + 1e-3));
+    INFO("largest relative difference " << worst << "; change from the raw film " << rms(denoised, raw));
+    CHECK(worst < 1e-3);
+    CHECK(rms(denoised, raw) > 0.5 * rms(reference, raw));  // the filter did as much as the CPU's
+    const PathTracedFrame again = gpuTrace(*gpu, list, 32, 32, 3);
+    CHECK(std::memcmp(again.radiance.data(), denoised.radiance.data(), again.radiance.size() * sizeof(float)) == 0);
+  }
+}
