@@ -273,6 +273,8 @@ class Stage(_Located):
             return False
         try:
             self._s.remove_prim(str(path))
+            from ._physics_schemas import forget
+            forget(str(path))
         except ValueError as e:
             if handle.type_name == "Scope" and "was not created by" in str(e):
                 return False
