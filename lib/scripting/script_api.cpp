@@ -12,7 +12,7 @@
 #include "behavior/run_activity.h"
 #include "core/log.h"
 #include "core/text.h"
-#include "physics/collider.h"
+#include "scripting/script_physics.h"
 #include "scripting/hook_watchdog.h"
 #include "scripting/python_host.h"
 #include "scripting/script_call.h"
@@ -276,6 +276,7 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
         "The world rotation (3x3, rows) that aims a prim's -Z from eye at target with +Y toward up; None when "
         "eye == target.");
 
+  bindPhysics(m);
   py::class_<Rng>(m, "Rng", "A portable random stream (PCG32): the same draws on every machine.")
       .def("random", &Rng::uniform01, "A float in [0, 1).")
       .def("uniform", &Rng::uniform, py::arg("low") = 0.0, py::arg("high") = 1.0, "low + (high - low) * random().")
@@ -478,18 +479,16 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
            [](const PrimHandle& h) { return matrix4ToPython(h.ctx->liveStage().worldMatrix(h.prim())); },
            "4x4, column-vector convention (p_world = M @ p).")
       .def(
-          "local_bounds",
+          "collider",
           [](const PrimHandle& h) -> py::object {
-            // The geometry's bounds in its own frame (mesh files loaded once per process, as the
-            // built-in volumeStackRandomizer loads them); None for a prim with no geometry.
+            // The geometry's collision shape in its own frame (mesh files loaded once per process, as
+            // the built-in volumeStackRandomizer loads them); None for a prim with no geometry.
             const Prim& p = h.prim();
             if (!p.typeInfo().gprim) return py::none();
             if (!h.ctx->assets) throw py::value_error(h.path + ": no asset resolver to load its geometry");
-            std::shared_ptr<const Collider> c = ColliderCache::shared().get(meshKeyOf(p), *h.ctx->assets, h.path);
-            const Vec3d lo = c->bounds.min(), hi = c->bounds.max();
-            return py::make_tuple(py::make_tuple(lo.x(), lo.y(), lo.z()), py::make_tuple(hi.x(), hi.y(), hi.z()));
+            return py::cast(ColliderRef{ColliderCache::shared().get(meshKeyOf(p), *h.ctx->assets, h.path)});
           },
-          "((min x, y, z), (max x, y, z)) of the prim's geometry in its frame, or None.")
+          "The prim's collider (its bounds: ((min x, y, z), (max x, y, z)) in its frame), or None.")
       .def_property_readonly("semantics",
                              [](const PrimHandle& h) {
                                py::dict d;

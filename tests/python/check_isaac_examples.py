@@ -3,10 +3,9 @@
 <repo>/../shared/isaac-behaviors) run unchanged: the pre-roll publishes the custom-event behavior's `.in`
 event on sdgbehave's bus and waits for the `.out` reply the script dispatches through
 carb.eventdispatcher, matched on its payload (a reply that does not match fails the run, so the replies
-are really on the bus); the example behavior's hooks run every frame (scripts print to stderr). volume_stack_randomizer.py sets up
-(crates and collision walls, checked from --save-stage), and its run, whose PhysX calls the layer does not
-map yet, fails with the layer's located message (the missing name, the Isaac file:line that used it, the
-docs page), exit 1; the physics schemas it authors are checked by
+are really on the bus); the example behavior's hooks run every frame (scripts print to stderr). volume_stack_randomizer.py stacks
+crates through the layer's ODE world (checked from --save-stage against the walled volume, each other,
+reruns and the built-in); the physics schemas it authors are checked by
 tests/data/isaac_scripts/physics_schemas_probe.py.
 
 usage: check_isaac_examples.py SDGBEHAVE SCENE_DIR SHARED_DIR"""
@@ -25,40 +24,101 @@ def run(binary, scene, out):
                           timeout=120)
 
 
-def check_volume_stack_setup(binary, scene, tmp):
-    """volume_stack.yaml's setup alone: the crates (Isaac's create_asset: an Xform referencing a mesh file,
-    a Mesh prim here) at the surface's pose, and six collision walls around the surface's top, sized from
-    UsdGeom.BBoxCache as Isaac's create_collision_walls sizes them."""
-    with open(scene) as f:
-        text = f.read()
-    setup_only = os.path.join(os.path.dirname(scene), ".volume_stack_setup.yaml")
-    saved = os.path.join(tmp, "setup_stage.yaml")
-    try:
-        with open(setup_only, "w") as f:
-            f.write(text[:text.index("  - publish: isaacsim.replicator.behavior.volumeStackRandomizer.in\n"
-                                     "    payload: {action: run}")])
-        p = subprocess.run([binary, "run", setup_only, "--out", os.path.join(tmp, "setup"), "--no-render",
-                            "--save-stage", saved], capture_output=True, text=True, timeout=120)
-    finally:
-        os.remove(setup_only)
-    check(p.returncode == 0, f"volume_stack.yaml setup only: exit {p.returncode}: {p.stderr[-800:]}")
+CRATE = ((-0.21, -0.16, 0.0), (0.21, 0.16, 0.32))  # tests/data/meshes/crate.glb's bounds, in its frame
+PALLET_TOP, HALF_X, HALF_Y = 0.14, 0.6, 0.5       # volume_stack.yaml's pallet: the walled volume's floor and sides
+
+
+def crate_boxes(saved):
+    """{path: (centre, 3 axes, 3 half sizes)} of the stacked crates in a --save-stage file."""
     with open(saved) as f:
         prims = yaml.safe_load(f)["prims"]
-    assets = {k: v for k, v in prims.items() if k.startswith("/Behaviors/volumeStackRandomizer/Assets/Pallet/Asset_")}
-    check(4 <= len(assets) <= 6, f"expected 4 to 6 crates (assets:numRange [4, 6]), found {sorted(assets)}")
-    for path, a in assets.items():
-        check(a.get("type") == "Mesh" and a.get("asset") == "meshes/crate.glb", f"{path}: {a}")
-        check(a.get("translate") == [0.0, 0.0, 0.07], f"{path}: not at the surface's origin: {a}")
-    walls = "/Behaviors/volumeStackRandomizer/CollisionWalls/Pallet/CollisionWalls/"
-    floor = prims.get(walls + "floor", {})
-    # Pallet: a size-2 Cube scaled (0.6, 0.5, 0.07) at z 0.07, so its top is at z 0.14; the floor is 0.4 thick
-    # below it, and the walls' root sits at the pallet's origin.
-    check(floor.get("scale") == [0.6, 0.5, 0.2] and abs(floor["translate"][2] + 0.13) < 1e-9,
-          f"floor wall: {floor}")
-    check(floor.get("attributes", {}).get("physics:collisionEnabled", {}).get("value") is True,
-          f"floor wall has no CollisionAPI's physics:collisionEnabled: {floor}")
-    for name in ("ceiling", "left_wall", "right_wall", "front_wall", "back_wall"):
-        check(walls + name in prims, f"no {name} among the collision walls")
+    out = {}
+    for path, p in prims.items():
+        if not path.startswith("/Behaviors/volumeStackRandomizer/Assets/Pallet/Asset_"):
+            continue
+        w, x, y, z = p["orient"]
+        rows = [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+        mid = [(a + b) / 2 for a, b in zip(*CRATE)]
+        centre = [p["translate"][r] + sum(rows[r][c] * mid[c] for c in range(3)) for r in range(3)]
+        axes = [[rows[r][c] for r in range(3)] for c in range(3)]
+        out[path] = (centre, axes, [(b - a) / 2 for a, b in zip(*CRATE)])
+    return prims, out
+
+
+def corners(box):
+    c, axes, h = box
+    return [[c[i] + sx * h[0] * axes[0][i] + sy * h[1] * axes[1][i] + sz * h[2] * axes[2][i] for i in range(3)]
+            for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
+
+
+def overlap_depth(a, b):
+    """The least overlap of two boxes over the separating axis candidates (<= 0: apart)."""
+    def cross(u, v):
+        return [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    candidates = a[1] + b[1] + [cross(u, v) for u in a[1] for v in b[1]]
+    least = float("inf")
+    for axis in candidates:
+        n = sum(x * x for x in axis) ** 0.5
+        if n < 1e-9:
+            continue
+        axis = [x / n for x in axis]
+        pa = [sum(p[i] * axis[i] for i in range(3)) for p in corners(a)]
+        pb = [sum(p[i] * axis[i] for i in range(3)) for p in corners(b)]
+        least = min(least, min(max(pa), max(pb)) - max(min(pa), min(pb)))
+    return least
+
+
+def check_volume_stack(binary, scene, tmp):
+    """volume_stack.yaml: Isaac's script stacks 4 to 6 crates on the pallet through the layer's ODE world.
+    After the pre-roll they rest inside the walled volume, on or above the pallet, apart from each other;
+    the walls are gone; the stage is byte-identical across runs and --threads; the built-in on the same
+    scene stacks comparably (count inside the volume, mean height)."""
+    def stack(name, extra=(), scene_path=scene):
+        saved = os.path.join(tmp, name + ".yaml")
+        p = subprocess.run([binary, "run", scene_path, "--out", os.path.join(tmp, name), "--no-render",
+                            "--save-stage", saved, *extra], capture_output=True, text=True, timeout=120)
+        check(p.returncode == 0, f"{os.path.basename(scene_path)} ({name}): exit {p.returncode}: {p.stderr[-800:]}")
+        return saved
+
+    saved = stack("stack")
+    prims, boxes = crate_boxes(saved)
+    check(4 <= len(boxes) <= 6, f"expected 4 to 6 crates (assets:numRange [4, 6]), found {sorted(boxes)}")
+    check(not any("CollisionWalls" in p for p in prims), "the collision walls are still on the stage")
+    for path, box in boxes.items():
+        pts = corners(box)
+        check(min(q[2] for q in pts) > PALLET_TOP - 0.01, f"{path} sinks into the pallet: {pts}")
+        check(max(abs(q[0]) for q in pts) < HALF_X + 0.01 and max(abs(q[1]) for q in pts) < HALF_Y + 0.01,
+              f"{path} is outside the walled volume: {pts}")
+        check(max(q[2] for q in pts) < PALLET_TOP + 1.5, f"{path} is above the drop height: {pts}")
+    paths = sorted(boxes)
+    for i, a in enumerate(paths):
+        for b in paths[i + 1:]:
+            depth = overlap_depth(boxes[a], boxes[b])
+            check(depth < 0.01, f"{a} and {b} interpenetrate by {depth:.4f}")
+    with open(saved, "rb") as f:
+        first = f.read()
+    for name, extra in (("again", ()), ("threads", ("--threads", "2"))):
+        with open(stack(name, extra), "rb") as f:
+            check(f.read() == first, f"the stacked stage differs on a rerun ({name})")
+    # The built-in volumeStackRandomizer on the same scene (the scene without its script list).
+    with open(scene) as f:
+        text = f.read()
+    builtin_scene = os.path.join(os.path.dirname(scene), ".volume_stack_builtin.yaml")
+    try:
+        with open(builtin_scene, "w") as f:
+            f.write("\n".join(line for line in text.splitlines() if not line.startswith("scripts:")) + "\n")
+        _, builtin = crate_boxes(stack("builtin", scene_path=builtin_scene))
+    finally:
+        os.remove(builtin_scene)
+    check(4 <= len(builtin) <= 6, f"the built-in stacked {len(builtin)} crates")
+    mean = sum(b[0][2] for b in boxes.values()) / len(boxes)
+    mean_builtin = sum(b[0][2] for b in builtin.values()) / len(builtin)
+    check(abs(mean - mean_builtin) < 0.15, f"mean crate height {mean:.3f} through the layer, {mean_builtin:.3f} "
+          "with the built-in")
+    print(f"volume stack: {len(boxes)} crates, mean centre height {mean:.3f} (built-in: {len(builtin)}, "
+          f"{mean_builtin:.3f})")
 
 
 def main():
@@ -90,14 +150,7 @@ def main():
         check(p.returncode != 0 and "no reply on isaacsim.replicator.behavior.exampleCustomEventBehavior.out" in p.stderr,
               f"a reply the pre-roll does not wait for still passed (exit {p.returncode}): {p.stderr[-400:]}")
         p = run(binary, os.path.join(scenes, "volume_stack.yaml"), os.path.join(tmp, "c"))
-        # The setup runs through the layer; the run's first PhysX call is the located 'not provided' error.
-        p = run(binary, os.path.join(scenes, "volume_stack.yaml"), os.path.join(tmp, "c"))
-        check(p.returncode == 1 and "omni.physx.get_physx_simulation_interface is not provided by sdgbehave's "
-              "Isaac Sim layer (used at " in p.stderr and "utils/scene_utils.py:" in p.stderr
-              and "docs/isaac-scripts.md" in p.stderr,
-              f"volume_stack.yaml: expected the located 'not provided' error, exit 1; exit {p.returncode}: "
-              f"{p.stderr[-500:]}")
-        check_volume_stack_setup(binary, os.path.join(scenes, "volume_stack.yaml"), tmp)
+        check_volume_stack(binary, os.path.join(scenes, "volume_stack.yaml"), tmp)
         # The physics schemas the volume stack randomizer applies, authored and read back by a probe script.
         p = run(binary, os.path.join(scenes, "physics_schemas.yaml"), os.path.join(tmp, "d"))
         check(p.returncode == 0 and "[PhysicsSchemasProbe][/World/Box] physics schemas ok" in p.stderr,

@@ -164,8 +164,9 @@ class BBoxCache(_Located):
     def ComputeWorldBound(self, prim):
         box = Gf.BBox3d()
         for p in Usd.PrimRange(prim):
-            local = p._h.local_bounds()
-            if local is not None:
+            collider = p._h.collider()
+            if collider is not None:
+                local = collider.bounds
                 box = Gf.BBox3d.Combine(box, Gf.BBox3d(Gf.Range3d(*local),
                                                        _matrix_from_columns(p._h.get_world_matrix())))
         return box

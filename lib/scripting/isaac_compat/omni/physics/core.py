@@ -1,7 +1,6 @@
 """omni.physics.core: the physics stage update interface, whose reset_simulation releases the
-simulation's state. sdgbehave's layer holds no simulation state between calls yet (omni.physx's
-simulation interface is not mapped), so there is nothing to release; the stage keeps what scripts wrote,
-as Isaac's stage does with /physics/resetOnStop off. Other names raise a located error
+simulation's world (omni.physx's ODE world: the next simulate makes a new one); the stage keeps the poses
+written, as Isaac's stage does with /physics/resetOnStop off. Other names raise a located error
 (see docs/isaac-scripts.md)."""
 from _isaac_compat import Located as _Located, module_getattr as _module_getattr
 
@@ -12,7 +11,8 @@ class IPhysicsStageUpdate(_Located):
     __slots__ = ()
 
     def reset_simulation(self):
-        return None
+        from omni.physx._simulation import SIMULATION
+        SIMULATION.reset()
 
 
 _INTERFACE = IPhysicsStageUpdate()
