@@ -16,7 +16,7 @@ import tempfile
 
 import yaml
 
-from checklib import check, finish
+from checklib import check, dataset_hashes, finish
 
 
 def run(binary, scene, out):
@@ -102,6 +102,17 @@ def check_volume_stack(binary, scene, tmp):
     for name, extra in (("again", ()), ("threads", ("--threads", "2"))):
         with open(stack(name, extra), "rb") as f:
             check(f.read() == first, f"the stacked stage differs on a rerun ({name})")
+    # The rendered dataset: byte-identical across --threads and a 2-shard split (each shard stacks anew).
+    whole, threads, shards = (os.path.join(tmp, n) for n in ("ds_whole", "ds_threads", "ds_shards"))
+    for out, extra in ((whole, ()), (threads, ("--threads", "2")), (shards, ("--shard", "0/2")),
+                       (shards, ("--shard", "1/2"))):
+        p = subprocess.run([binary, "run", scene, "--out", out, *extra], capture_output=True, text=True, timeout=120)
+        check(p.returncode == 0, f"volume_stack.yaml {' '.join(extra)}: exit {p.returncode}: {p.stderr[-600:]}")
+    p = subprocess.run([binary, "merge", shards], capture_output=True, text=True, timeout=120)
+    hashes = dataset_hashes(whole)
+    check(any(os.path.basename(n).startswith("rgb_") for n in hashes), f"no rgb images in {sorted(hashes)}")
+    check(dataset_hashes(threads) == hashes, "volume_stack.yaml: --threads 2 differs from the default")
+    check(p.returncode == 0 and dataset_hashes(shards) == hashes, "volume_stack.yaml: 2 shards merged differ")
     # The built-in volumeStackRandomizer on the same scene (the scene without its script list).
     with open(scene) as f:
         text = f.read()

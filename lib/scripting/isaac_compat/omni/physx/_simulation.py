@@ -104,7 +104,10 @@ class _Simulation:
             self._world.set_friction(m.get_attribute("physics:dynamicFriction"))
 
     def _sync_bodies(self, stage):
-        for path in sorted(_physics_schemas.applied_paths(_RIGID)):
+        rigid = _physics_schemas.applied_paths(_RIGID)
+        for path in [p for p in sorted(self._bodies) if p not in rigid or stage.get_prim(p) is None]:
+            self._world.remove_body(self._bodies.pop(path))  # removed from the stage: it leaves
+        for path in sorted(rigid):
             h = stage.get_prim(path)
             enabled = h is not None and _flag(h, "physics:rigidBodyEnabled", True)
             if enabled and path not in self._bodies:
