@@ -12,6 +12,7 @@
 #include "behavior/run_activity.h"
 #include "core/log.h"
 #include "core/text.h"
+#include "scripting/script_physics.h"
 #include "scripting/hook_watchdog.h"
 #include "scripting/python_host.h"
 #include "scripting/script_call.h"
@@ -275,6 +276,7 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
         "The world rotation (3x3, rows) that aims a prim's -Z from eye at target with +Y toward up; None when "
         "eye == target.");
 
+  bindPhysics(m);
   py::class_<Rng>(m, "Rng", "A portable random stream (PCG32): the same draws on every machine.")
       .def("random", &Rng::uniform01, "A float in [0, 1).")
       .def("uniform", &Rng::uniform, py::arg("low") = 0.0, py::arg("high") = 1.0, "low + (high - low) * random().")
@@ -476,6 +478,17 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
       .def("get_world_matrix",
            [](const PrimHandle& h) { return matrix4ToPython(h.ctx->liveStage().worldMatrix(h.prim())); },
            "4x4, column-vector convention (p_world = M @ p).")
+      .def(
+          "collider",
+          [](const PrimHandle& h) -> py::object {
+            // The geometry's collision shape in its own frame (mesh files loaded once per process, as
+            // the built-in volumeStackRandomizer loads them); None for a prim with no geometry.
+            const Prim& p = h.prim();
+            if (!p.typeInfo().gprim) return py::none();
+            if (!h.ctx->assets) throw py::value_error(h.path + ": no asset resolver to load its geometry");
+            return py::cast(ColliderRef{ColliderCache::shared().get(meshKeyOf(p), *h.ctx->assets, h.path)});
+          },
+          "The prim's collider (its bounds: ((min x, y, z), (max x, y, z)) in its frame), or None.")
       .def_property_readonly("semantics",
                              [](const PrimHandle& h) {
                                py::dict d;

@@ -12,8 +12,8 @@ import sys
 
 ROOTS = ("pxr", "carb", "omni", "usdrt", "isaacsim")
 SUPPORTED = {"location_randomizer.py", "rotation_randomizer.py", "look_at_behavior.py", "light_randomizer.py",
-             "texture_randomizer.py", "example_behavior.py", "example_custom_event_behavior.py", "base_behavior.py",
-             "example_base_behavior.py", "global_variables.py", "behavior_utils.py", "extension.py", "__init__.py"}
+             "texture_randomizer.py", "volume_stack_randomizer.py", "scene_utils.py", "example_behavior.py",
+             "example_custom_event_behavior.py", "base_behavior.py", "example_base_behavior.py", "global_variables.py", "behavior_utils.py", "extension.py", "__init__.py"}
 
 
 def chains(path):

@@ -3,9 +3,9 @@
 <repo>/../shared/isaac-behaviors) run unchanged: the pre-roll publishes the custom-event behavior's `.in`
 event on sdgbehave's bus and waits for the `.out` reply the script dispatches through
 carb.eventdispatcher, matched on its payload (a reply that does not match fails the run, so the replies
-are really on the bus); the example behavior's hooks run every frame (scripts print to stderr). volume_stack_randomizer.py, whose
-PhysX calls the layer does not map yet, fails its setup with the layer's located message (the missing
-name, the Isaac file:line that used it, the docs page), exit 1.
+are really on the bus); the example behavior's hooks run every frame (scripts print to stderr). The physics schemas
+volume_stack_randomizer.py authors are checked by tests/data/isaac_scripts/physics_schemas_probe.py (its
+stacking: check_isaac_volume_stack.py).
 
 usage: check_isaac_examples.py SDGBEHAVE SCENE_DIR SHARED_DIR"""
 import os
@@ -50,10 +50,10 @@ def main():
         check(p.returncode != 0 and "no reply on isaacsim.replicator.behavior.exampleCustomEventBehavior.out" in p.stderr,
               f"a reply the pre-roll does not wait for still passed (exit {p.returncode}): {p.stderr[-400:]}")
         p = run(binary, os.path.join(scenes, "volume_stack.yaml"), os.path.join(tmp, "c"))
-        check(p.returncode == 1 and "pxr.UsdPhysics.MaterialAPI is not provided by sdgbehave's Isaac Sim layer "
-              "(used at " in p.stderr and "utils/scene_utils.py:" in p.stderr and "docs/isaac-scripts.md" in p.stderr,
-              f"volume_stack.yaml: expected the located 'not provided' error, exit 1; exit {p.returncode}: "
-              f"{p.stderr[-500:]}")
+        # The physics schemas the volume stack randomizer applies, authored and read back by a probe script.
+        p = run(binary, os.path.join(scenes, "physics_schemas.yaml"), os.path.join(tmp, "d"))
+        check(p.returncode == 0 and "[PhysicsSchemasProbe][/World/Box] physics schemas ok" in p.stderr,
+              f"physics_schemas.yaml: exit {p.returncode}: {p.stderr[-800:]}")
     return finish("Isaac's example behaviors: the custom-event replies reach the bus; the example behavior runs")
 
 

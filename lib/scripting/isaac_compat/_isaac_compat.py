@@ -84,8 +84,39 @@ def loop():
 
 
 def next_update():
+    """A future resolved by the next update. Awaited from a behavior (a hook, an event callback or a
+    coroutine they started), it is resolved by a tick event the behavior publishes on sdgbehave's bus,
+    which the next update delivers, pre-roll updates included (an event-driven behavior gets no
+    on_update there); the bus's order makes the resumption deterministic. Awaited outside any behavior,
+    the next on_update resolves it."""
     future = loop().create_future()
-    _waiting.append(future)
+    b = current
+    if b is None:
+        _waiting.append(future)
+        return future
+    ticks = b.__dict__.get("_isaac_ticks")
+    if ticks is None:
+        event = f"sdgbehave.isaacLayer.nextUpdate:{b._ctx.prim_path}:{type(b).__name__}"
+        ticks = b.__dict__["_isaac_ticks"] = {"futures": [], "pending": False, "event": event}
+
+        def deliver(payload, _b=b, _ticks=ticks):
+            global current
+            _ticks["pending"] = False
+            ready, _ticks["futures"] = _ticks["futures"], []
+            previous = current
+            current = _b
+            try:
+                for f in ready:
+                    if not f.done():
+                        f.set_result(None)
+                run_ready()
+            finally:
+                current = previous
+        b.subscribe(ticks["event"], deliver)
+    ticks["futures"].append(future)
+    if not ticks["pending"]:
+        ticks["pending"] = True
+        b.publish(ticks["event"], {})
     return future
 
 

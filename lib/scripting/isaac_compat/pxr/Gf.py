@@ -654,6 +654,66 @@ class Range3d(_Located):
         return any(a > b for a, b in zip(self._min, self._max))
 
 
+class BBox3d(_Located):
+    """A box: a range in the frame of a matrix (GfBBox3d without the zero-area primitive flag)."""
+    __slots__ = ("_range", "_matrix")
+
+    def __init__(self, box_range=None, matrix=None):
+        self._range = box_range if box_range is not None else Range3d()
+        self._matrix = Matrix4d(matrix._m) if matrix is not None else Matrix4d()
+
+    def GetRange(self):
+        return self._range
+
+    GetBox = GetRange
+
+    def GetMatrix(self):
+        return Matrix4d(self._matrix._m)
+
+    def SetRange(self, box_range):
+        self._range = box_range
+
+    def SetMatrix(self, matrix):
+        self._matrix = Matrix4d(matrix._m)
+
+    def GetVolume(self):
+        if self._range.IsEmpty():
+            return 0.0
+        size = self._range.GetSize()
+        return abs(self._matrix.GetDeterminant()) * size[0] * size[1] * size[2]
+
+    def ComputeAlignedRange(self):
+        return _transformed_range(self._range, self._matrix)
+
+    ComputeAlignedBox = ComputeAlignedRange
+
+    def ComputeCentroid(self):
+        return self._matrix.Transform(self._range.GetMidpoint())
+
+    @staticmethod
+    def Combine(b1, b2):
+        """USD's rule: the result keeps the first non-empty box's frame; the other is taken into it."""
+        if b1._range.IsEmpty():
+            return BBox3d(b2._range, b2._matrix)
+        if b2._range.IsEmpty():
+            return BBox3d(b1._range, b1._matrix)
+        into_b1 = b2._matrix * b1._matrix.GetInverse()
+        other = _transformed_range(b2._range, into_b1)
+        lo = [min(a, b) for a, b in zip(b1._range.GetMin(), other.GetMin())]
+        hi = [max(a, b) for a, b in zip(b1._range.GetMax(), other.GetMax())]
+        return BBox3d(Range3d(lo, hi), b1._matrix)
+
+
+def _transformed_range(box_range, matrix):
+    """The axis-aligned range of `box_range`'s eight corners transformed by `matrix`."""
+    if box_range.IsEmpty():
+        return Range3d()
+    lo, hi = box_range.GetMin(), box_range.GetMax()
+    corners = [matrix.Transform(Vec3d(x, y, z)) for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+               for z in (lo[2], hi[2])]
+    return Range3d([min(c[i] for c in corners) for i in range(3)], [max(c[i] for c in corners) for i in range(3)])
+
+
 class Range1d(_Located):
     __slots__ = ("_min", "_max")
 

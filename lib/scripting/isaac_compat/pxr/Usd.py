@@ -87,6 +87,8 @@ class Attribute(_Located):
         self._prim, self._name, self._pending = prim, name, pending
 
     def IsValid(self):
+        if self._name == "xformOpOrder":  # sdgbehave keeps the order with the ops, not as an attribute
+            return self._pending is not None or bool(self._prim._h.xform_op_names)
         return self._pending is not None or self._prim._h.has_attribute(self._name)
 
     __bool__ = IsValid
@@ -234,8 +236,35 @@ class Prim(_Located):
     def RemoveProperty(self, name):
         return self._h.remove_attribute(str(name))
 
+    def GetReferences(self):
+        return References(self)
+
     def GetRelationship(self, name):
         raise _unsupported(f"Usd.Prim.GetRelationship({name!r})", "sdgbehave's stage has no relationships")
+
+
+class References(_Located):
+    """A prim's references, as far as sdgbehave's stage composes them: one mesh file referenced by an
+    empty Xform the behavior made (Isaac's create_asset) makes that prim a Mesh prim showing the file
+    (`asset` attribute), which is what sdgbehave's stage holds for a referenced mesh asset."""
+    __slots__ = ("_prim",)
+
+    def __init__(self, prim):
+        self._prim = prim
+
+    def AddReference(self, assetPath, primPath=None, layerOffset=None, position=None):
+        prim = self._prim
+        url = assetPath.path if isinstance(assetPath, Sdf.AssetPath) else str(assetPath)
+        h = prim._h
+        if primPath is not None or h.type_name != "Xform" or h.children:
+            raise _unsupported(f"Usd.References.AddReference({url!r}) on {h.path} ({h.type_name})",
+                               "only an empty Xform the behavior made may reference one mesh file")
+        path, stage = h.path, prim._stage._s
+        stage.remove_prim(path)
+        mesh = stage.define_prim(path, "Mesh")
+        mesh.set_attribute("asset", url, "asset")
+        prim._h = mesh
+        return True
 
 
 class Stage(_Located):
@@ -273,6 +302,8 @@ class Stage(_Located):
             return False
         try:
             self._s.remove_prim(str(path))
+            from ._physics_schemas import forget
+            forget(str(path))
         except ValueError as e:
             if handle.type_name == "Scope" and "was not created by" in str(e):
                 return False

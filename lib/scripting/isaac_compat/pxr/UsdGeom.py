@@ -152,6 +152,32 @@ class XformCache(_Located):
         self._time = time
 
 
+class BBoxCache(_Located):
+    """World bounds of geometry: each gprim's bounds in its own frame (Cube, Sphere, ... from their
+    attributes; mesh files loaded as sdgbehave loads them) under its world matrix, combined as
+    Gf.BBox3d.Combine does. Purposes and visibility are not filtered: every gprim counts."""
+    __slots__ = ("_time",)
+
+    def __init__(self, time=None, includedPurposes=None, useExtentsHint=False, ignoreVisibility=False):
+        self._time = time
+
+    def ComputeWorldBound(self, prim):
+        box = Gf.BBox3d()
+        for p in Usd.PrimRange(prim):
+            collider = p._h.collider()
+            if collider is not None:
+                local = collider.bounds
+                box = Gf.BBox3d.Combine(box, Gf.BBox3d(Gf.Range3d(*local),
+                                                       _matrix_from_columns(p._h.get_world_matrix())))
+        return box
+
+    def Clear(self):
+        pass
+
+    def SetTime(self, time):
+        self._time = time
+
+
 class Xform(Xformable):
     __slots__ = ()
 

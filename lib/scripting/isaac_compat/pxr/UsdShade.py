@@ -119,6 +119,11 @@ class MaterialBindingAPI(Usd.APISchemaBase):
         return MaterialBindingAPI(prim)
 
     def Bind(self, material, bindingStrength=Tokens.weakerThanDescendants, materialPurpose=Tokens.allPurpose):
+        if materialPurpose == Tokens.physics:
+            # The physics binding only feeds the simulation (friction, restitution): the layer keeps it.
+            from ._physics_schemas import bind_physics_material
+            bind_physics_material(self._prim, material.GetPath())
+            return True
         if materialPurpose not in (Tokens.allPurpose, Tokens.full, Tokens.preview):
             raise _unsupported(f"UsdShade.MaterialBindingAPI.Bind(materialPurpose={materialPurpose!r})",
                                "sdgbehave binds one material per prim, for rendering")

@@ -1,4 +1,4 @@
-"""omni.kit.app: next_update_async() resumes on the next timeline update."""
+"""omni.kit.app: next_update_async() resumes on the next update (pre-roll updates included)."""
 import _isaac_compat
 from _isaac_compat import Located as _Located, module_getattr as _module_getattr
 
