@@ -7,6 +7,8 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <optional>
+
 #include "assets/asset_resolver.h"
 #include "behavior/behavior_prims.h"
 #include "behavior/run_activity.h"
@@ -64,6 +66,21 @@ struct PrimHandle {
 struct StageHandle {
   ContextPtr ctx;
 };
+
+// A Python list of exactly three floats (what a Gf.Vec3d is underneath), read
+// with no allocation: Isaac scripts write a translate per prim per frame.
+// Anything else goes through fromPython, which checks and names the error.
+std::optional<Vec3d> exactFloatList3(py::handle o) {
+  PyObject* list = o.ptr();
+  if (!PyList_Check(list) || PyList_GET_SIZE(list) != 3) return std::nullopt;
+  Vec3d v;
+  for (Py_ssize_t i = 0; i < 3; ++i) {
+    PyObject* x = PyList_GET_ITEM(list, i);
+    if (!PyFloat_CheckExact(x)) return std::nullopt;
+    v[int(i)] = PyFloat_AS_DOUBLE(x);
+  }
+  return v;
+}
 
 py::object handleOrNone(const ContextPtr& ctx, const Prim* p) {
   if (!p || p->isPseudoRoot()) return py::none();
@@ -361,7 +378,9 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
              Prim& p = h.prim();
              XformOp* op = findOp(p, name);
              if (!op) throw py::value_error(h.what(std::string(name)) + ": the prim has no such xform op");
-             Value v = fromPython(value, op->value.type(), h.what(std::string(name)));
+             std::optional<Vec3d> fast =
+                 op->value.type() == ValueType::Double3 ? exactFloatList3(value) : std::nullopt;
+             Value v = fast ? Value::makeDouble3(*fast) : fromPython(value, op->value.type(), h.what(std::string(name)));
              // The journal copies the ops aside; `op` still points into the prim's.
              if (!h.ctx->created(p)) h.ctx->journal().beforeXformWrite(p);
              op->value = std::move(v);

@@ -106,17 +106,39 @@ class _Vec(list, _Located):
         return f"Gf.{type(self).__name__}({', '.join(repr(x) for x in self)})"
 
 
+_new_list, _extend_list = list.__new__, list.extend
+
+
 class _Vec3(_Vec):
     __slots__ = ()
 
-    # Unrolled: the hot ones (a location plus an offset, per prim per frame).
+    # Unrolled, with no comprehension or classmethod call on the double types:
+    # the hot ones (built from three draws, a location plus an offset, per
+    # prim per frame).
+    def __init__(self, *args):
+        if len(args) == 3 and self._round is None:
+            x, y, z = args
+            list.__init__(self, (float(x), float(y), float(z)))
+        else:
+            _Vec.__init__(self, *args)
+
     def __add__(self, o):
-        return self._make([self[0] + o[0], self[1] + o[1], self[2] + o[2]])
+        if self._round:
+            return self._make([self[0] + o[0], self[1] + o[1], self[2] + o[2]])
+        r = _new_list(type(self))
+        _extend_list(r, (self[0] + o[0], self[1] + o[1], self[2] + o[2]))
+        return r
 
     __radd__ = __iadd__ = __add__
 
     def __sub__(self, o):
-        return self._make([self[0] - o[0], self[1] - o[1], self[2] - o[2]])
+        if self._round:
+            return self._make([self[0] - o[0], self[1] - o[1], self[2] - o[2]])
+        r = _new_list(type(self))
+        _extend_list(r, (self[0] - o[0], self[1] - o[1], self[2] - o[2]))
+        return r
+
+    __isub__ = __sub__
 
     def GetDot(self, o):
         return self[0] * o[0] + self[1] * o[1] + self[2] * o[2]

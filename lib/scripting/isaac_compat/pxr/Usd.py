@@ -149,10 +149,11 @@ class Attribute(_Located):
 
 
 class Prim(_Located):
-    __slots__ = ("_h", "_stage", "_hash")
+    # _ops: UsdGeom.Xformable's (op names, XformOp objects), reused while the names match.
+    __slots__ = ("_h", "_stage", "_hash", "_ops")
 
     def __init__(self, handle=None, stage=None):
-        self._h, self._stage, self._hash = handle, stage, None
+        self._h, self._stage, self._hash, self._ops = handle, stage, None, None
 
     def IsValid(self):
         return self._h is not None and self._h.is_valid

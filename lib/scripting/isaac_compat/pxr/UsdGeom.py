@@ -89,8 +89,15 @@ class Xformable(Imageable):
         return handle.is_xformable
 
     def GetOrderedXformOps(self):
+        # Scripts list the ops per prim per frame: the XformOp objects (a prim
+        # and a name, nothing else) are made once and reused while the prim's
+        # op names are the same; the caller gets its own list.
         prim = self._prim
-        return [XformOp(prim, name) for name in prim._h.xform_op_names]
+        names = prim._h.xform_op_names
+        cached = prim._ops
+        if cached is None or cached[0] != names:
+            cached = prim._ops = (names, [XformOp(prim, name) for name in names])
+        return list(cached[1])
 
     def GetXformOpOrderAttr(self):
         return Usd.Attribute(self._prim, "xformOpOrder")
