@@ -44,6 +44,8 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader || true
   --save-stage "$work/demo_stage.yaml" > /dev/null 2>&1
 set -x
 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$cores" denoise gpu
+# Each frame's stages (setup, tracing, denoising, read-back) on stderr.
+SDG_GPU_TIMING=1 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$cores" denoise gpu
 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$cores" gpu
 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$cores" denoise
 "$bin/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 1024 "$cores" gpu
