@@ -28,7 +28,7 @@ namespace {
 
 // pt_common.glsl's local size: one 32-wide warp per group, so a warp whose
 // paths end early frees its slot at once; 8 x 4 traced 28-31 % faster than
-// 8 x 8, 16 x 8, 16 x 16 or 32 x 4 on an H100 (docs/performance.md).
+// 8 x 8 on an H100, 25-33 % faster than 16 x 8, 16 x 16 or 32 x 4 (docs/performance.md).
 constexpr int kTraceGroupX = 8, kTraceGroupY = 4;
 constexpr int kDenoiseGroup = 8;  // pt_denoise.glsl's local size, both axes
 // Samples per dispatch: about a million paths, so no single dispatch runs
