@@ -92,6 +92,17 @@ class EglComputeContext {
   if (!gl_.name) throw GpuUnavailable("GPU path tracer: the OpenGL function " #name " is missing");
     SDG_GL_COMPUTE_FUNCTIONS(SDG_LOAD_GL)
 #undef SDG_LOAD_GL
+    GLint version[2] = {0, 0};
+    gl_.glGetIntegerv(GL_MAJOR_VERSION, &version[0]);
+    gl_.glGetIntegerv(GL_MINOR_VERSION, &version[1]);
+    if (version[0] * 10 + version[1] >= 44) {  // else they stay null (a stub from getProc may not work)
+#define SDG_LOAD_OPTIONAL_GL(type, name) gl_.name = reinterpret_cast<type>(getProc(#name));
+      SDG_GL_COMPUTE_OPTIONAL_FUNCTIONS(SDG_LOAD_OPTIONAL_GL)
+#undef SDG_LOAD_OPTIONAL_GL
+      if (!gl_.glBufferStorage || !gl_.glMapBufferRange || !gl_.glCopyBufferSubData || !gl_.glFenceSync ||
+          !gl_.glClientWaitSync || !gl_.glDeleteSync)
+        gl_.glBufferStorage = nullptr;  // the read-back then takes the 4.3 way
+    }
     description_ = std::string(reinterpret_cast<const char*>(gl_.glGetString(GL_RENDERER))) + ", " +
                    reinterpret_cast<const char*>(gl_.glGetString(GL_VERSION));
   }

@@ -52,11 +52,26 @@ class GpuUnavailable : public std::runtime_error {
   X(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation)     \
   X(PFNGLUNIFORM1IPROC, glUniform1i)                       \
   X(PFNGLUNIFORM1FPROC, glUniform1f)                       \
-  X(PFNGLFINISHPROC, glFinish)
+  X(PFNGLFINISHPROC, glFinish)                             \
+  X(PFNGLGENQUERIESPROC, glGenQueries)                     \
+  X(PFNGLDELETEQUERIESPROC, glDeleteQueries)               \
+  X(PFNGLQUERYCOUNTERPROC, glQueryCounter)                 \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
+
+// GL 4.4's, for reading the film back through pinned host memory; null on
+// a 4.3 context, which reads it back with glGetBufferSubData instead.
+#define SDG_GL_COMPUTE_OPTIONAL_FUNCTIONS(X)               \
+  X(PFNGLBUFFERSTORAGEPROC, glBufferStorage)               \
+  X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange)             \
+  X(PFNGLCOPYBUFFERSUBDATAPROC, glCopyBufferSubData)       \
+  X(PFNGLFENCESYNCPROC, glFenceSync)                       \
+  X(PFNGLCLIENTWAITSYNCPROC, glClientWaitSync)             \
+  X(PFNGLDELETESYNCPROC, glDeleteSync)
 
 struct GlComputeApi {
 #define SDG_DECLARE_GL(type, name) type name = nullptr;
   SDG_GL_COMPUTE_FUNCTIONS(SDG_DECLARE_GL)
+  SDG_GL_COMPUTE_OPTIONAL_FUNCTIONS(SDG_DECLARE_GL)
 #undef SDG_DECLARE_GL
 };
 

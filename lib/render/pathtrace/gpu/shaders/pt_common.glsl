@@ -3,7 +3,7 @@
 // streams. The parts are joined in this order (gpu_programs.cpp):
 // pt_common, pt_bsdf, pt_scene, pt_lights, pt_trace. Each is a port of the
 // CPU tracer's file named in its header; keep the two in step.
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 8, local_size_y = 4) in;
 
 const float kPi = 3.14159265358979323846;
 const float kInf = uintBitsToFloat(0x7f800000u);
