@@ -380,16 +380,19 @@ void DatasetRun::renderProduct(Renderer& renderer, const std::shared_ptr<const F
 
 void DatasetRun::collectPending() {
   if (!pending_) return;
+  // Taken out first: when collecting or submitting throws (a full disk
+  // reported by the pool, say), the failure path must not collect it again.
+  const Pending pending = std::move(*pending_);
+  pending_.reset();
   Renderer& renderer = bringUp_->renderer();
-  ProductFrame& frame = *pending_->frame;
-  renderer.collect(pending_->slot, frame.passes);
-  if (frame.hasMasks) renderer.collectCoverage(pending_->slot, frame.masks);
+  ProductFrame& frame = *pending.frame;
+  renderer.collect(pending.slot, frame.passes);
+  if (frame.hasMasks) renderer.collectCoverage(pending.slot, frame.masks);
   // Timed with the render stage around collectPending()'s callers.
   color_->render(frame.scene->list, frame.cameraIndex, frameSampleSeed(options_.seed, frame.frame, frame.product),
                  frame.passes, keepRadiance_);
-  if (frame.scene->nextKnown) submit(std::move(pending_->frame));
-  else held_.push_back(std::move(pending_->frame));  // until the next frame's poses are known
-  pending_.reset();
+  if (frame.scene->nextKnown) submit(pending.frame);
+  else held_.push_back(pending.frame);  // until the next frame's poses are known
 }
 
 // Hands a collected product to the pool.
