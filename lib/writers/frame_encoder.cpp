@@ -62,6 +62,8 @@ void FrameEncoder::encode(ProductFrame& frame, uint64_t sequence) {
              frame.annotations);
   nameEntities(frame);
   if (needs_.motion) {
+    frame.forwardFlow = spareFlows.take();
+    frame.backwardFlow = spareFlows.take();
     flowTo(frame.passes, scene.list, frame.camera, frame.metersPerUnit, scene.next.get(), frame.forwardFlow);
     flowTo(frame.passes, scene.list, frame.camera, frame.metersPerUnit, scene.previous.get(), frame.backwardFlow);
   }
@@ -81,6 +83,10 @@ void FrameEncoder::encode(ProductFrame& frame, uint64_t sequence) {
   datasetFiles += datasetCount;
   spareFrames.give(std::move(frame.passes));
   if (frame.hasMasks) spareMasks.give(std::move(frame.masks));
+  if (needs_.motion) {
+    spareFlows.give(std::move(frame.forwardFlow));
+    spareFlows.give(std::move(frame.backwardFlow));
+  }
   encodeMicros += microsBetween(encodeStart, Clock::now());
 }
 

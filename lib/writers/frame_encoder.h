@@ -27,6 +27,9 @@ class FrameEncoder {
   // Big buffers circulate between the render thread and the pool.
   Recycler<FramePasses> spareFrames;
   Recycler<CoverageMasks> spareMasks;
+  // Motion: the forward and backward flow of a product (2 floats a pixel
+  // each), scratch that lives only while the pool encodes it.
+  Recycler<std::vector<float>> spareFlows;
   // Totals over the pool's threads.
   std::atomic<uint64_t> datasetFiles{0};
   std::atomic<uint64_t> annotateMicros{0};
