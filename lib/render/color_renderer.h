@@ -70,6 +70,15 @@ class ColorRenderer {
   virtual void render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
                       bool keepRadiance) = 0;
 
+  // The two-step form of render(), for a caller that works on one product
+  // while the next is made (a run): queue() starts a product's colour in
+  // slot 0 or 1, collect() finishes it into passes. `list` must stay alive
+  // and unchanged until the slot is collected. By default queue() keeps the
+  // arguments and collect() calls render(); a renderer that works
+  // asynchronously (the GPU tracer) overrides both.
+  virtual void queue(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, bool keepRadiance, int slot);
+  virtual void collect(int slot, FramePasses& passes);
+
   // false: the colour is the rasterizer's own pass, drawn with the labels
   // (render() leaves it); true: render() makes it without the rasterizer,
   // so a colour-only picture needs no GL context for it.
@@ -78,6 +87,15 @@ class ColorRenderer {
   virtual bool producesRadiance() const = 0;
   // Shown as the picture's device; empty: the GL context's name tells it.
   virtual std::string device() const = 0;
+
+ private:
+  struct Queued {
+    const RenderList* list = nullptr;
+    size_t cameraIndex = 0;
+    uint64_t frameSeed = 0;
+    bool keepRadiance = false;
+  };
+  Queued queued_[2];
 };
 
 // A frame's sample streams: from the run seed, the frame number and the

@@ -373,6 +373,8 @@ void DatasetRun::renderProduct(Renderer& renderer, const std::shared_ptr<const F
     for (const SemanticEntity& e : scene->semantics.entities) groups.push_back(e.items);
     renderer.queueCoverage(list, cameraIndex, groups, slot);
   }
+  // The colour too (a path tracer's on the GPU works while the previous product is collected).
+  color_->queue(list, cameraIndex, frameSampleSeed(options_.seed, frame, product), keepRadiance_, slot);
   collectPending();
   pending_ = Pending{job, slot};
   result_.stages.render += since(renderStart);
@@ -389,8 +391,7 @@ void DatasetRun::collectPending() {
   renderer.collect(pending.slot, frame.passes);
   if (frame.hasMasks) renderer.collectCoverage(pending.slot, frame.masks);
   // Timed with the render stage around collectPending()'s callers.
-  color_->render(frame.scene->list, frame.cameraIndex, frameSampleSeed(options_.seed, frame.frame, frame.product),
-                 frame.passes, keepRadiance_);
+  color_->collect(pending.slot, frame.passes);
   if (frame.scene->nextKnown) submit(pending.frame);
   else held_.push_back(pending.frame);  // until the next frame's poses are known
 }

@@ -257,3 +257,69 @@ TEST_CASE("gpu path tracer: the denoiser on the GPU matches the CPU denoiser on 
     CHECK(std::memcmp(again.radiance.data(), denoised.radiance.data(), again.radiance.size() * sizeof(float)) == 0);
   }
 }
+
+namespace {
+
+// A run's form of the tracer (queueDisplay/collectDisplay) against the film
+// form and the CPU's toneMap(): the tone curve on the device within one code
+// value, the radiance the film's, frames queued two deep as a run queues them.
+void checkDisplayForm() {
+  PathTraceSettings settings;
+  settings.samples = 4;
+  settings.maxBounces = 4;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  const RenderList list = renderListOf(kCornell);
+  const int w = 24, h = 16;
+  const float exposure = 2.0f;  // the Cornell room's radiance is about 0.1-1
+  std::vector<PathTracedFrame> films(3);
+  std::vector<std::vector<uint8_t>> expected(3);
+  for (uint64_t seed = 0; seed < 3; ++seed) {
+    films[seed] = gpuTrace(*gpu, list, w, h, seed + 1);
+    expected[seed].resize(size_t(w * h * 4));
+    toneMap(films[seed], exposure, expected[seed].data());
+  }
+  std::vector<uint8_t> rgba;
+  std::vector<float> radiance;
+  auto compare = [&](size_t seed) {
+    REQUIRE(rgba.size() == expected[seed].size());
+    int worst = 0;
+    for (size_t i = 0; i < rgba.size(); ++i) worst = std::max(worst, std::abs(int(rgba[i]) - int(expected[seed][i])));
+    CHECK(worst <= 1);
+    REQUIRE(radiance.size() == films[seed].radiance.size());
+    float worstRadiance = 0;
+    for (size_t i = 0; i < radiance.size(); ++i)
+      worstRadiance = std::max(worstRadiance, std::abs(radiance[i] - films[seed].radiance[i]) /
+                                                  std::max(1e-3f, std::abs(films[seed].radiance[i])));
+    CHECK(worstRadiance < 1e-5f);
+  };
+  // Queued two deep: frame k+1 is queued before frame k is collected.
+  gpu->queueDisplay(list, 0, w, h, 1, exposure, true, 0);
+  gpu->queueDisplay(list, 0, w, h, 2, exposure, true, 1);
+  gpu->collectDisplay(0, rgba, &radiance);
+  compare(0);
+  gpu->queueDisplay(list, 0, w, h, 3, exposure, true, 0);
+  gpu->collectDisplay(1, rgba, &radiance);
+  compare(1);
+  gpu->collectDisplay(0, rgba, &radiance);
+  compare(2);
+  // Without the radiance, and a slot collected twice is a caller's bug.
+  gpu->queueDisplay(list, 0, w, h, 1, exposure, false, 1);
+  radiance.clear();
+  gpu->collectDisplay(1, rgba, &radiance);
+  CHECK(radiance.empty());
+  CHECK_THROWS_AS(gpu->collectDisplay(1, rgba, nullptr), std::logic_error);
+}
+
+}  // namespace
+
+TEST_CASE("gpu path tracer: a run's frames, tone mapped on the device and queued two deep, are the film's",
+          "[pathtrace][gpu]") {
+  checkDisplayForm();
+}
+
+TEST_CASE("gpu path tracer: the GL 4.3 read-back (no pinned buffers) gives the same frames", "[pathtrace][gpu]") {
+  setenv("SDG_GPU_GL43", "1", 1);
+  checkDisplayForm();
+  unsetenv("SDG_GPU_GL43");
+}

@@ -53,6 +53,7 @@ class GpuUnavailable : public std::runtime_error {
   X(PFNGLUNIFORM1IPROC, glUniform1i)                       \
   X(PFNGLUNIFORM1FPROC, glUniform1f)                       \
   X(PFNGLFINISHPROC, glFinish)                             \
+  X(PFNGLFLUSHPROC, glFlush)                               \
   X(PFNGLGENQUERIESPROC, glGenQueries)                     \
   X(PFNGLDELETEQUERIESPROC, glDeleteQueries)               \
   X(PFNGLQUERYCOUNTERPROC, glQueryCounter)                 \

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -22,6 +23,7 @@ extern const char kPtSceneGlsl[];
 extern const char kPtLightsGlsl[];
 extern const char kPtTraceGlsl[];
 extern const char kPtDenoiseGlsl[];
+extern const char kPtDisplayGlsl[];
 
 namespace sdg {
 namespace {
@@ -41,6 +43,8 @@ enum Binding : GLuint {
   kTextureTable, kTexels, kLights, kBindingCount
 };
 constexpr GLuint kDenoiseWork = 2;  // the denoise kernel's binding of `denoiseWork`
+constexpr GLuint kDisplayBinding = 13;  // pt_display.glsl's `display`
+constexpr int kDisplayGroup = 8;  // pt_display.glsl's local size, both axes
 
 // SDG_GPU_TIMING=1: each frame's stages on stderr (GL timestamps), for profiling.
 bool timingRequested() {
@@ -121,6 +125,19 @@ struct GpuPathTracer::Impl {
   GLuint denoiseWork = 0;  // five vec4 planes (pt_denoise.glsl); never read back
   bool denoiseWithVariance = false;
   size_t denoiseCapacity = 0;
+  // The display kernel (pt_display.glsl) and, per queued frame, its
+  // output on the device and its pinned, persistently mapped host copy.
+  GLuint displayProgram = 0;
+  struct DisplaySlot {
+    GLuint device = 0, pinned = 0;
+    size_t bytes = 0;
+    const uint32_t* host = nullptr;
+    GLsync done = nullptr;
+    int width = 0, height = 0;
+    bool radiance = false, queued = false;
+  };
+  std::array<DisplaySlot, 2> slots{};
+  std::chrono::steady_clock::time_point lastTraceStart;  // submit()'s, for stats
   bool timing = timingRequested();
   std::array<GLuint, 3> timestamps{};  // before tracing, after tracing, after denoising
 
@@ -258,10 +275,7 @@ struct GpuPathTracer::Impl {
     g.glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(bytes));
     g.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
     GLsync done = g.glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    GLenum waited = GL_TIMEOUT_EXPIRED;
-    while (waited == GL_TIMEOUT_EXPIRED) waited = g.glClientWaitSync(done, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
-    g.glDeleteSync(done);
-    if (waited == GL_WAIT_FAILED) throw RunError("GPU path tracer: waiting for the frame failed");
+    wait(done);
     return pinnedFilm;
   }
 
@@ -303,6 +317,142 @@ struct GpuPathTracer::Impl {
       upload(kParams, s.tables.data() + s.dome[3], (s.tables.size() - size_t(s.dome[3])) * sizeof(float), pickOffset);
     }
   }
+
+  // A frame's GPU work up to a film ready to read: the scene's changes
+  // uploaded, the samples traced, the denoiser run. Queued without waiting
+  // for the device, so a caller can overlap its own work with it (only
+  // SDG_GPU_TIMING waits, to time each stage alone).
+  void submit(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed) {
+    const auto setupStart = std::chrono::steady_clock::now();
+    const GlComputeApi& g = gl();
+    scene.update(list);
+    const int samples = settings.samples;
+    ParamsHeader header{};
+    cameraPlanes(list.cameras[cameraIndex], width, height, header);
+    const int32_t counts[4] = {settings.maxBounces, int32_t(scene.lights.size()), int32_t(scene.instances.size()),
+                               scene.anyLobeMultiplier ? 1 : 0};
+    std::copy(counts, counts + 4, header.counts);
+    header.seed[0] = uint32_t(frameSeed);
+    header.seed[1] = uint32_t(frameSeed >> 32);
+    header.seed[2] = uint32_t(scene.topRoot);
+    std::copy(scene.dome, scene.dome + 4, header.dome);
+    std::copy(scene.domeTables, scene.domeTables + 4, header.domeTables);
+    header.size[0] = width;
+    header.size[1] = height;
+    uploadScene(header);
+    const size_t pixels = size_t(width) * size_t(height);
+    if (capacity[kFilm] < pixels * sizeof(FilmPixel)) {
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[kFilm]);
+      // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
+      checkMemory("the film");
+      capacity[kFilm] = pixels * sizeof(FilmPixel);
+    }
+    for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+    g.glUseProgram(program);
+    if (timing) {
+      g.glFinish();
+      if (!timestamps[0]) g.glGenQueries(GLsizei(timestamps.size()), timestamps.data());
+      g.glQueryCounter(timestamps[0], GL_TIMESTAMP);
+    }
+    const auto traceStart = std::chrono::steady_clock::now();
+    const int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
+                                                  : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
+    const GLuint groupsX = GLuint((width + kTraceGroupX - 1) / kTraceGroupX), groupsY = GLuint((height + kTraceGroupY - 1) / kTraceGroupY);
+    for (int first = 0; first < samples; first += perDispatch) {
+      header.size[2] = first;
+      header.size[3] = std::min(perDispatch, samples - first);
+      header.seed[3] = first == 0 ? 1u : 0u;  // the first dispatch also writes the label planes and clears the sums
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[kParams]);
+      g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, &header);
+      g.glDispatchCompute(groupsX, groupsY, 1);
+      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    if (timing) g.glQueryCounter(timestamps[1], GL_TIMESTAMP);
+    if (denoise)
+      runDenoiser(width, height, samples, GLuint((width + kDenoiseGroup - 1) / kDenoiseGroup),
+                  GLuint((height + kDenoiseGroup - 1) / kDenoiseGroup));
+    if (timing) g.glQueryCounter(timestamps[2], GL_TIMESTAMP);
+    stats.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
+    lastTraceStart = traceStart;
+  }
+
+  void checkTraced() {
+    const GLenum error = gl().glGetError();
+    if (error == GL_OUT_OF_MEMORY) throw GpuUnavailable("GPU path tracer: out of GPU memory while tracing");
+    if (error != GL_NO_ERROR) throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while tracing");
+  }
+
+  // SDG_GPU_TIMING's line for the frame just read back.
+  void printTiming(double readBackMs) {
+    const GlComputeApi& g = gl();
+    GLuint64 t[3] = {};
+    for (size_t k = 0; k < 3; ++k) g.glGetQueryObjectui64v(timestamps[k], GL_QUERY_RESULT, &t[k]);
+    std::fprintf(stderr, "sdg gpu timing: setup %.2f ms (cpu), trace %.2f ms (gpu), denoise %.2f ms (gpu), read-back %.2f ms (cpu)\n",
+                 stats.setupSeconds * 1e3, double(t[1] - t[0]) * 1e-6, double(t[2] - t[1]) * 1e-6, readBackMs);
+  }
+
+  // Tone maps the film on the device into `slot`'s buffer and starts its
+  // copy to the slot's pinned host memory, fenced.
+  void queueDisplay(DisplaySlot& slot, int width, int height, float exposureScale, bool radiance) {
+    const GlComputeApi& g = gl();
+    if (!displayProgram) {
+      const char* parts[] = {kPtDisplayGlsl};
+      displayProgram = build(parts, 1, "display");
+    }
+    const size_t pixels = size_t(width) * size_t(height);
+    const size_t bytes = pixels * 4 * (radiance ? 4 : 1);
+    if (bytes > slot.bytes) {  // immutable storage: a bigger frame needs new buffers
+      if (slot.device) g.glDeleteBuffers(1, &slot.device);
+      if (slot.pinned) g.glDeleteBuffers(1, &slot.pinned);
+      slot.pinned = 0;
+      g.glGenBuffers(1, &slot.device);
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, slot.device);
+      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_DRAW);
+      checkMemory("the frame's display buffer");
+      slot.bytes = bytes;
+    }
+    if (g.glBufferStorage && !slot.pinned) {
+      g.glGenBuffers(1, &slot.pinned);
+      g.glBindBuffer(GL_COPY_WRITE_BUFFER, slot.pinned);
+      const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+      g.glBufferStorage(GL_COPY_WRITE_BUFFER, GLsizeiptr(bytes), nullptr, flags | GL_CLIENT_STORAGE_BIT);
+      checkMemory("the frame's read-back buffer");
+      slot.host = static_cast<const uint32_t*>(g.glMapBufferRange(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(bytes), flags));
+      if (!slot.host) throw RunError("GPU path tracer: cannot map the frame's read-back buffer");
+    }
+    g.glUseProgram(displayProgram);
+    g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDisplayBinding, slot.device);
+    auto set = [&](const char* name, int v) { g.glUniform1i(g.glGetUniformLocation(displayProgram, name), v); };
+    set("width", width);
+    set("height", height);
+    set("withRadiance", radiance ? 1 : 0);
+    g.glUniform1f(g.glGetUniformLocation(displayProgram, "radianceDivisor"), denoise ? 1.0f : float(settings.samples));
+    g.glUniform1f(g.glGetUniformLocation(displayProgram, "exposureScale"), exposureScale);
+    g.glDispatchCompute(GLuint((width + kDisplayGroup - 1) / kDisplayGroup), GLuint((height + kDisplayGroup - 1) / kDisplayGroup), 1);
+    g.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    slot.width = width;
+    slot.height = height;
+    slot.radiance = radiance;
+    slot.queued = true;
+    if (!g.glBufferStorage) return;  // GL 4.3: collectDisplay() reads the device buffer itself
+    g.glBindBuffer(GL_COPY_READ_BUFFER, slot.device);
+    g.glBindBuffer(GL_COPY_WRITE_BUFFER, slot.pinned);
+    g.glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(pixels * 4 * (radiance ? 4 : 1)));
+    g.glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+    if (slot.done) g.glDeleteSync(slot.done);
+    slot.done = g.glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    g.glFlush();  // so the device starts now, while the caller works on
+  }
+
+  void wait(GLsync& done) {
+    const GlComputeApi& g = gl();
+    GLenum waited = GL_TIMEOUT_EXPIRED;
+    while (waited == GL_TIMEOUT_EXPIRED) waited = g.glClientWaitSync(done, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
+    g.glDeleteSync(done);
+    done = nullptr;
+    if (waited == GL_WAIT_FAILED) throw RunError("GPU path tracer: waiting for the frame failed");
+  }
 };
 
 GpuPathTracer::GpuPathTracer(const AssetResolver& assets, const PathTraceSettings& settings)
@@ -322,6 +472,12 @@ GpuPathTracer::~GpuPathTracer() {
       if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
       if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
       if (impl_->pinned) g.glDeleteBuffers(1, &impl_->pinned);
+      if (impl_->displayProgram) g.glDeleteProgram(impl_->displayProgram);
+      for (Impl::DisplaySlot& slot : impl_->slots) {
+        if (slot.done) g.glDeleteSync(slot.done);
+        if (slot.device) g.glDeleteBuffers(1, &slot.device);
+        if (slot.pinned) g.glDeleteBuffers(1, &slot.pinned);
+      }
       if (impl_->timestamps[0]) g.glDeleteQueries(GLsizei(impl_->timestamps.size()), impl_->timestamps.data());
     });
   } catch (...) {  // the context is going away with the tracer; nothing to report
@@ -339,86 +495,29 @@ void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispat
 std::string GpuPathTracer::device() const { return impl_->context->description(); }
 bool GpuPathTracer::onGpu() const { return impl_->context->onGpu(); }
 
-void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
-                           PathTracedFrame& out) {
+namespace {
+void checkFrame(const RenderList& list, size_t cameraIndex, int width, int height) {
   if (cameraIndex >= list.cameras.size())
     throw std::invalid_argument("path tracer: camera " + std::to_string(cameraIndex) + " of " +
                                 std::to_string(list.cameras.size()));
   if (width < 1 || height < 1) throw std::invalid_argument("path tracer: the image size must be at least 1 x 1");
+}
+}  // namespace
+
+void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+                           PathTracedFrame& out) {
+  checkFrame(list, cameraIndex, width, height);
   Impl& m = *impl_;
   // On the context's thread: the caller's own GL context (the rasterizer's) is left alone.
   m.context->run([&] {
-    const auto setupStart = std::chrono::steady_clock::now();
-    const GlComputeApi& g = m.gl();
-    m.scene.update(list);
-    const int samples = m.settings.samples;
-    ParamsHeader header{};
-    cameraPlanes(list.cameras[cameraIndex], width, height, header);
-    const int32_t counts[4] = {m.settings.maxBounces, int32_t(m.scene.lights.size()), int32_t(m.scene.instances.size()),
-                               m.scene.anyLobeMultiplier ? 1 : 0};
-    std::copy(counts, counts + 4, header.counts);
-    header.seed[0] = uint32_t(frameSeed);
-    header.seed[1] = uint32_t(frameSeed >> 32);
-    header.seed[2] = uint32_t(m.scene.topRoot);
-    std::copy(m.scene.dome, m.scene.dome + 4, header.dome);
-    std::copy(m.scene.domeTables, m.scene.domeTables + 4, header.domeTables);
-    header.size[0] = width;
-    header.size[1] = height;
-    m.uploadScene(header);
-    const size_t pixels = size_t(width) * size_t(height);
-    if (m.capacity[kFilm] < pixels * sizeof(FilmPixel)) {
-      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kFilm]);
-      // A DRAW hint: drivers may keep a READ buffer in host memory, where every kernel access crosses the bus.
-      g.glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(pixels * sizeof(FilmPixel)), nullptr, GL_DYNAMIC_DRAW);
-      m.checkMemory("the film");
-      m.capacity[kFilm] = pixels * sizeof(FilmPixel);
-    }
-    for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, m.buffers[b]);
-    g.glUseProgram(m.program);
-    g.glFinish();
-    if (m.timing && !m.timestamps[0]) g.glGenQueries(GLsizei(m.timestamps.size()), m.timestamps.data());
-    if (m.timing) g.glQueryCounter(m.timestamps[0], GL_TIMESTAMP);
-
-    const auto traceStart = std::chrono::steady_clock::now();
-    const int perDispatch = m.samplesPerDispatch > 0 ? std::min(m.samplesPerDispatch, samples)
-                                                    : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
-    const GLuint groupsX = GLuint((width + kTraceGroupX - 1) / kTraceGroupX), groupsY = GLuint((height + kTraceGroupY - 1) / kTraceGroupY);
-    for (int first = 0; first < samples; first += perDispatch) {
-      header.size[2] = first;
-      header.size[3] = std::min(perDispatch, samples - first);
-      header.seed[3] = first == 0 ? 1u : 0u;  // the first dispatch also writes the label planes and clears the sums
-      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, m.buffers[kParams]);
-      g.glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof header, &header);
-      g.glDispatchCompute(groupsX, groupsY, 1);
-      g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    }
-    if (m.timing) g.glQueryCounter(m.timestamps[1], GL_TIMESTAMP);
-    const auto denoiseStart = std::chrono::steady_clock::now();
-    if (m.denoise)
-      m.runDenoiser(width, height, samples, GLuint((width + kDenoiseGroup - 1) / kDenoiseGroup),
-                    GLuint((height + kDenoiseGroup - 1) / kDenoiseGroup));
-    const auto denoiseSubmitted = std::chrono::steady_clock::now();
-    if (m.timing) {
-      g.glQueryCounter(m.timestamps[2], GL_TIMESTAMP);
-      g.glFinish();  // so the read-back below is timed alone
-    }
+    m.submit(list, cameraIndex, width, height, frameSeed);
     const auto readStart = std::chrono::steady_clock::now();
+    const size_t pixels = size_t(width) * size_t(height);
     const FilmPixel* film = m.readFilm(pixels);
-    const GLenum error = g.glGetError();
-    if (error == GL_OUT_OF_MEMORY) throw GpuUnavailable("GPU path tracer: out of GPU memory while tracing");
-    if (error != GL_NO_ERROR) throw RunError("GPU path tracer: OpenGL error " + std::to_string(error) + " while tracing");
+    m.checkTraced();
     const auto traceEnd = std::chrono::steady_clock::now();
-    if (m.timing) {
-      GLuint64 t[3] = {};
-      for (size_t k = 0; k < 3; ++k) g.glGetQueryObjectui64v(m.timestamps[k], GL_QUERY_RESULT, &t[k]);
-      auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
-      std::fprintf(stderr,
-                   "sdg gpu timing: setup %.2f ms (cpu), trace %.2f ms (gpu), denoise %.2f ms (gpu), "
-                   "denoise submit %.2f ms (cpu), read-back %.2f ms (cpu)\n",
-                   ms(setupStart, traceStart), double(t[1] - t[0]) * 1e-6, double(t[2] - t[1]) * 1e-6,
-                   ms(denoiseStart, denoiseSubmitted), ms(readStart, traceEnd));
-    }
-
+    if (m.timing) m.printTiming(std::chrono::duration<double, std::milli>(traceEnd - readStart).count());
+    const int samples = m.settings.samples;
     out.width = width;
     out.height = height;
     out.radiance.resize(3 * pixels);
@@ -447,11 +546,52 @@ void GpuPathTracer::render(const RenderList& list, size_t cameraIndex, int width
       stats.droppedSamples += uint64_t(f.sum[3]);
     }
     stats.samples = uint64_t(pixels) * uint64_t(samples);
-    stats.seconds = std::chrono::duration<double>(traceEnd - traceStart).count();
-    stats.setupSeconds = std::chrono::duration<double>(traceStart - setupStart).count();
+    stats.setupSeconds = m.stats.setupSeconds;
+    stats.seconds = std::chrono::duration<double>(traceEnd - m.lastTraceStart).count();
     stats.threads = 0;
     m.stats = stats;
   });
+}
+
+void GpuPathTracer::queueDisplay(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+                                 float exposureScale, bool radiance, int slot) {
+  checkFrame(list, cameraIndex, width, height);
+  if (slot < 0 || slot >= int(impl_->slots.size())) throw std::invalid_argument("GPU path tracer: no display slot " + std::to_string(slot));
+  Impl& m = *impl_;
+  m.context->run([&] {
+    m.submit(list, cameraIndex, width, height, frameSeed);
+    m.queueDisplay(m.slots[size_t(slot)], width, height, exposureScale, radiance);
+    m.checkTraced();
+  });
+}
+
+void GpuPathTracer::collectDisplay(int slot, std::vector<uint8_t>& rgba, std::vector<float>* radiance) {
+  if (slot < 0 || slot >= int(impl_->slots.size()) || !impl_->slots[size_t(slot)].queued)
+    throw std::logic_error("GPU path tracer: nothing queued in display slot " + std::to_string(slot));
+  Impl& m = *impl_;
+  Impl::DisplaySlot& s = m.slots[size_t(slot)];
+  s.queued = false;
+  const size_t pixels = size_t(s.width) * size_t(s.height);
+  rgba.resize(4 * pixels);
+  if (radiance && s.radiance) radiance->resize(3 * pixels);
+  m.context->run([&] {
+    const GlComputeApi& g = m.gl();
+    const auto readStart = std::chrono::steady_clock::now();
+    if (s.done) {
+      m.wait(s.done);
+    } else {  // GL 4.3: no pinned copy; read the device buffer (waits for it)
+      g.glBindBuffer(GL_SHADER_STORAGE_BUFFER, s.device);
+      g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(4 * pixels), rgba.data());
+      if (radiance && s.radiance)
+        g.glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(4 * pixels), GLsizeiptr(12 * pixels), radiance->data());
+    }
+    m.checkTraced();
+    if (m.timing) m.printTiming(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count());
+  });
+  if (!s.host || s.pinned == 0) return;
+  // The pinned copy is coherent and its fence has passed: read here, off the context's thread.
+  std::memcpy(rgba.data(), s.host, 4 * pixels);
+  if (radiance && s.radiance) std::memcpy(radiance->data(), s.host + pixels, 3 * pixels * sizeof(float));
 }
 
 }  // namespace sdg

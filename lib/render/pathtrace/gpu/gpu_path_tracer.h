@@ -28,6 +28,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "assets/asset_resolver.h"
 #include "render/pathtrace/denoiser.h"
@@ -48,6 +49,20 @@ class GpuPathTracer {
   // current context (the rasterizer's) is never touched.
   void render(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
               PathTracedFrame& out);
+
+  // A run's form, in two steps, so the device traces one frame while the
+  // caller works on the previous: queueDisplay() uploads the stage's
+  // changes and queues the tracing, the denoiser and the tone curve
+  // (path_tracer.h's toneMap(), on the device, within one code value of
+  // it) into `slot` (0 or 1), and returns without waiting; collectDisplay()
+  // waits for that slot and copies out its RGBA8 frame and, where
+  // `radiance` was asked for, the linear radiance (3 floats a pixel). Only
+  // these leave the device (1 MB for 512 x 512, not the 16 MB film).
+  // `list` may change or go once queueDisplay() returns. stats() is not
+  // updated by this form (counting the rays would need the film).
+  void queueDisplay(const RenderList& list, size_t cameraIndex, int width, int height, uint64_t frameSeed,
+                    float exposureScale, bool radiance, int slot);
+  void collectDisplay(int slot, std::vector<uint8_t>& rgba, std::vector<float>* radiance);
 
   const PathTraceStats& stats() const;
   // With a value, render() also runs the denoiser (denoiser.h's filter,

@@ -18,23 +18,32 @@ std::unique_ptr<GpuPathTracer> makeTracer(const ColorRendererInputs& inputs) {
 }  // namespace
 
 GpuTracerColor::GpuTracerColor(const ColorRendererInputs& inputs)
-    : settings_(inputs.settings), tracer_(makeTracer(inputs)), denoiser_(denoiseSettingsOf(inputs.threads)) {
+    : settings_(inputs.settings), tracer_(makeTracer(inputs)) {
   if (settings_.denoise) tracer_->setDenoiser(denoiseSettingsOf(inputs.threads));
-  settings_.denoise = false;  // done on the GPU, before the film is read back
 }
 
 std::string GpuTracerColor::device() const { return "path tracer (GPU: " + tracer_->device() + ")"; }
 
 void GpuTracerColor::render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
                             bool keepRadiance) {
+  queue(list, cameraIndex, frameSeed, keepRadiance, 0);
+  collect(0, passes);
+}
+
+void GpuTracerColor::queue(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, bool keepRadiance, int slot) {
   try {
-    tracer_->render(list, cameraIndex, settings_.width, settings_.height, frameSeed, frame_);
+    tracer_->queueDisplay(list, cameraIndex, settings_.width, settings_.height, frameSeed, settings_.exposureScale,
+                          keepRadiance, slot);
   } catch (const GpuUnavailable& e) {
     // Out of memory mid-run: the frames so far came from the GPU, so falling
     // back now would mix two tracers in one dataset; the run stops instead.
     throw RunError(std::string(e.what()) + " (use render.pathtracer: cpu for this scene)");
   }
-  finishTracedColor(settings_, denoiser_, frame_, passes, keepRadiance);
+  keepRadiance_[slot] = keepRadiance;
+}
+
+void GpuTracerColor::collect(int slot, FramePasses& passes) {
+  tracer_->collectDisplay(slot, passes.rgba, keepRadiance_[slot] ? &passes.hdrColor : nullptr);
 }
 
 std::unique_ptr<ColorRenderer> makeGpuTracerColor(const ColorRendererInputs& inputs) {

@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "render/color_renderer.h"
-#include "render/pathtrace/denoiser.h"
 #include "render/pathtrace/gpu/gpu_path_tracer.h"
 
 namespace sdg {
@@ -18,6 +17,9 @@ class GpuTracerColor final : public ColorRenderer {
 
   void render(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, FramePasses& passes,
               bool keepRadiance) override;
+  // The tracing, denoising and tone curve run on the device between the two.
+  void queue(const RenderList& list, size_t cameraIndex, uint64_t frameSeed, bool keepRadiance, int slot) override;
+  void collect(int slot, FramePasses& passes) override;
   bool replacesRasterColor() const override { return true; }
   bool producesRadiance() const override { return true; }
   std::string device() const override;
@@ -25,10 +27,9 @@ class GpuTracerColor final : public ColorRenderer {
   const PathTraceStats& stats() const { return tracer_->stats(); }
 
  private:
-  RenderSettings settings_;  // denoise off: the tracer denoises on the GPU
+  RenderSettings settings_;
   std::unique_ptr<GpuPathTracer> tracer_;
-  Denoiser denoiser_;
-  PathTracedFrame frame_;
+  bool keepRadiance_[2] = {false, false};
 };
 
 // Under render.pathtracer: auto, a machine whose EGL has no GPU gets the
