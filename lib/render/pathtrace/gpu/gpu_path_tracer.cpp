@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -45,6 +47,19 @@ enum Binding : GLuint {
 constexpr GLuint kDenoiseWork = 2;  // the denoise kernel's binding of `denoiseWork`
 constexpr GLuint kDisplayBinding = 13;  // pt_display.glsl's `display`
 constexpr int kDisplayGroup = 8;  // pt_display.glsl's local size, both axes
+
+// SDG_GPU_KERNEL_DIR=DIR: the kernels' GLSL read from DIR's pt_*.glsl
+// instead of the compiled-in copies, so kernel variants can be timed on a
+// GPU machine without a build there (for kernel development only).
+std::string kernelSource(const char* compiledIn, const char* name) {
+  const char* dir = std::getenv("SDG_GPU_KERNEL_DIR");
+  if (!dir || !*dir) return compiledIn;
+  std::ifstream in(std::string(dir) + "/" + name, std::ios::binary);
+  if (!in) throw RunError(std::string("SDG_GPU_KERNEL_DIR: cannot read ") + dir + "/" + name);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // SDG_GPU_TIMING=1: each frame's stages on stderr (GL timestamps), for profiling.
 bool timingRequested() {
@@ -199,7 +214,11 @@ struct GpuPathTracer::Impl {
 
   void compile() {
     const GlComputeApi& g = gl();
-    const char* parts[] = {kPtCommonGlsl, kPtBsdfGlsl, kPtSceneGlsl, kPtLightsGlsl, kPtTraceGlsl};
+    const std::string sources[] = {kernelSource(kPtCommonGlsl, "pt_common.glsl"), kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
+                                   kernelSource(kPtSceneGlsl, "pt_scene.glsl"), kernelSource(kPtLightsGlsl, "pt_lights.glsl"),
+                                   kernelSource(kPtTraceGlsl, "pt_trace.glsl")};
+    const char* parts[std::size(sources)];
+    for (size_t k = 0; k < std::size(sources); ++k) parts[k] = sources[k].c_str();
     program = build(parts, std::size(parts), "path tracing");
     g.glGenBuffers(GLsizei(buffers.size()), buffers.data());
     // Every block gets a store before the first dispatch, even one a scene leaves empty.

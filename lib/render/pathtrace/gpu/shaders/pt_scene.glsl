@@ -252,34 +252,57 @@ bool opaqueAt(uint instance, uint triangle, float u, float v) {
 }
 
 const int kStackSize = 64;
+// A stack entry that enters instance (entry - kEnterInstance): the rest of
+// a top-level leaf's instances wait on the stack as these. Node indices
+// stay below it.
+const int kEnterInstance = 0x40000000;
 
-// The closest hit (or, with anyHit, any hit) of one instance's mesh; the
-// ray in world space is taken into the mesh's space unnormalised, so t is
-// the same in both.
-bool traceMesh(uint instance, vec3 worldO, vec3 worldD, float tMin, inout float tMax, bool anyHit, inout Hit hit) {
-  Instance inst = instances[instance];
-  Mesh mesh = meshes[inst.ids.x];
-  bool cutOut = inst.flags.x != 0;
-  vec3 o = rowsTimes(inst.local, worldO, 1.0), d = rowsTimes(inst.local, worldD, 0.0);
-  vec3 inv = 1.0 / d;
-  int nodeBase = mesh.bases.x, triBase = mesh.bases.y;
+// The closest hit (or, with anyHit, any hit) of the two-level BVH, in one
+// loop over one stack: the top level's entries, then, above the stack
+// height where an instance was entered, that instance's mesh's, with the
+// ray taken into the mesh's space unnormalised (so t is the same in both).
+// One stack and one loop, not a loop per level: half the local memory, and
+// the warp's invocations stay in the same loop whatever level each is in.
+// Counted in the pixel's ray counter by the callers.
+bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
+  hit.instance = hit.triangle = 0u;
+  hit.u = hit.v = hit.t = 0.0;
+  if (params.counts.z == 0) return false;
+  vec3 ro = o, rd = d, inv = 1.0 / d;
   int stack[kStackSize];
   int top = 0;
-  stack[top++] = mesh.flags.z;
-  bool found = false;
-  while (top > 0) {
+  stack[top++] = int(params.seed.z);
+  int instance = -1, instanceBase = 0, nodeBase = 0, triBase = 0;
+  bool cutOut = false, found = false;
+  for (;;) {
+    if (instance >= 0 && top == instanceBase) {  // the mesh is done: back to the top level
+      instance = -1;
+      ro = o;
+      rd = d;
+      inv = 1.0 / d;
+    }
+    if (top == 0) break;
     int item = stack[--top];
-    if (item < 0) {  // a leaf
+    int enter = -1;
+    if (instance < 0 && item >= kEnterInstance) {
+      enter = item - kEnterInstance;
+    } else if (instance < 0 && item < 0) {  // a top-level leaf: its instances (stored in leaf order)
+      int code = ~item;
+      int first = code >> 4, count = (code & 15) + 1;
+      for (int k = count - 1; k >= 1; --k)
+        if (top < kStackSize) stack[top++] = kEnterInstance + first + k;
+      enter = first;
+    } else if (item < 0) {  // a mesh's leaf
       int code = ~item;
       int first = code >> 4, count = (code & 15) + 1;
       for (int k = 0; k < count; ++k) {
         int at = 3 * (triBase + first + k);
         float t, u, v;
-        if (!hitTriangle(o, d, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
+        if (!hitTriangle(ro, rd, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
         uint triangle = uint(triangles[at].w);
-        if (cutOut && !opaqueAt(instance, triangle, u, v)) continue;
+        if (cutOut && !opaqueAt(uint(instance), triangle, u, v)) continue;
         tMax = t;
-        hit.instance = instance;
+        hit.instance = uint(instance);
         hit.triangle = triangle;
         hit.u = u;
         hit.v = v;
@@ -288,64 +311,36 @@ bool traceMesh(uint instance, vec3 worldO, vec3 worldD, float tMin, inout float 
         if (anyHit) return true;
       }
       continue;
-    }
-    Node n = nodes[nodeBase + item];
-    vec4 entry = boxEntry(n, o, inv, tMin, tMax);
-    // Push the farther children first, so the nearest is visited next.
-    for (int pass = 0; pass < 4; ++pass) {
-      int best = -1;
-      float bestT = -1.0;
-      for (int k = 0; k < 4; ++k)
-        if (entry[k] < kInf && entry[k] > bestT) {
-          best = k;
-          bestT = entry[k];
-        }
-      if (best < 0) break;
-      entry[best] = kInf;
-      if (top < kStackSize) stack[top++] = n.child[best];
-    }
-  }
-  return found;
-}
-
-// Counted in the pixel's ray counter by the callers.
-bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
-  hit.instance = hit.triangle = 0u;
-  hit.u = hit.v = hit.t = 0.0;
-  if (params.counts.z == 0) return false;
-  vec3 inv = 1.0 / d;
-  int stack[kStackSize];
-  int top = 0;
-  stack[top++] = int(params.seed.z);
-  bool found = false;
-  while (top > 0) {
-    int item = stack[--top];
-    if (item < 0) {
-      int code = ~item;
-      int first = code >> 4, count = (code & 15) + 1;
-      for (int k = 0; k < count; ++k) {
-        // The instances are stored in the top level's leaf order.
-        if (traceMesh(uint(first + k), o, d, tMin, tMax, anyHit, hit)) {
-          found = true;
-          if (anyHit) return true;
-        }
+    } else {  // an inner node of either level
+      Node n = instance < 0 ? topNodes[item] : nodes[nodeBase + item];
+      vec4 entry = boxEntry(n, ro, inv, tMin, tMax);
+      // Push the farther children first, so the nearest is visited next.
+      for (int pass = 0; pass < 4; ++pass) {
+        int best = -1;
+        float bestT = -1.0;
+        for (int k = 0; k < 4; ++k)
+          if (entry[k] < kInf && entry[k] > bestT) {
+            best = k;
+            bestT = entry[k];
+          }
+        if (best < 0) break;
+        entry[best] = kInf;
+        if (top < kStackSize) stack[top++] = n.child[best];
       }
       continue;
     }
-    Node n = topNodes[item];
-    vec4 entry = boxEntry(n, o, inv, tMin, tMax);
-    for (int pass = 0; pass < 4; ++pass) {
-      int best = -1;
-      float bestT = -1.0;
-      for (int k = 0; k < 4; ++k)
-        if (entry[k] < kInf && entry[k] > bestT) {
-          best = k;
-          bestT = entry[k];
-        }
-      if (best < 0) break;
-      entry[best] = kInf;
-      if (top < kStackSize) stack[top++] = n.child[best];
-    }
+    // Enter instance `enter`: its mesh's root above the current stack.
+    Instance inst = instances[enter];
+    Mesh mesh = meshes[inst.ids.x];
+    instance = enter;
+    cutOut = inst.flags.x != 0;
+    ro = rowsTimes(inst.local, o, 1.0);
+    rd = rowsTimes(inst.local, d, 0.0);
+    inv = 1.0 / rd;
+    nodeBase = mesh.bases.x;
+    triBase = mesh.bases.y;
+    instanceBase = top;
+    if (top < kStackSize) stack[top++] = mesh.flags.z;
   }
   return found;
 }
