@@ -30,10 +30,9 @@ extern const char kPtDisplayGlsl[];
 namespace sdg {
 namespace {
 
-// pt_common.glsl's local size: one 32-wide warp per group, so a warp whose
-// paths end early frees its slot at once; 8 x 4 traced 28-31 % faster than
-// 8 x 8 on an H100, 25-33 % faster than 16 x 8, 16 x 16 or 32 x 4 (docs/performance.md).
-constexpr int kTraceGroupX = 8, kTraceGroupY = 4;
+// The tracing kernel's work group size is pt_common.glsl's (asked of the
+// compiled program, so the GLSL alone decides it): 8 x 4, one 32-wide warp
+// per group, traced 28-31 % faster than 8 x 8 on an H100 (docs/performance.md).
 constexpr int kDenoiseGroup = 8;  // pt_denoise.glsl's local size, both axes
 // Samples per dispatch: about a million paths, so no single dispatch runs
 // long enough for a driver to call the device hung. Any split gives the
@@ -124,6 +123,7 @@ struct GpuPathTracer::Impl {
   std::unique_ptr<GlComputeContext> context;
   GpuSceneData scene;
   GLuint program = 0;
+  GLint traceGroup[3] = {8, 4, 1};  // the program's local size
   std::array<GLuint, kBindingCount> buffers{};
   std::array<size_t, kBindingCount> capacity{};
   std::vector<FilmPixel> film;  // the read-back's copy where there is no pinned buffer
@@ -220,6 +220,7 @@ struct GpuPathTracer::Impl {
     const char* parts[std::size(sources)];
     for (size_t k = 0; k < std::size(sources); ++k) parts[k] = sources[k].c_str();
     program = build(parts, std::size(parts), "path tracing");
+    gl().glGetProgramiv(program, GL_COMPUTE_WORK_GROUP_SIZE, traceGroup);
     g.glGenBuffers(GLsizei(buffers.size()), buffers.data());
     // Every block gets a store before the first dispatch, even one a scene leaves empty.
     for (GLuint b = 0; b < kBindingCount; ++b) upload(Binding(b), nullptr, 0);
@@ -377,7 +378,8 @@ struct GpuPathTracer::Impl {
     const auto traceStart = std::chrono::steady_clock::now();
     const int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
                                                   : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
-    const GLuint groupsX = GLuint((width + kTraceGroupX - 1) / kTraceGroupX), groupsY = GLuint((height + kTraceGroupY - 1) / kTraceGroupY);
+    const GLuint groupsX = GLuint((width + traceGroup[0] - 1) / traceGroup[0]),
+                 groupsY = GLuint((height + traceGroup[1] - 1) / traceGroup[1]);
     for (int first = 0; first < samples; first += perDispatch) {
       header.size[2] = first;
       header.size[3] = std::min(perDispatch, samples - first);

@@ -217,17 +217,30 @@ struct Hit {
 
 // The entry distance of the ray into the four boxes (kInf where missed).
 // The far distance is pushed out by a few ulps, as robust traversal does,
-// so a box of zero thickness (a plane) is still entered.
+// so a box of zero thickness (a plane) is still entered. (Not the slabs as
+// lo * inv - o * inv: with a zero direction component that is inf - inf.)
 vec4 boxEntry(Node n, vec3 o, vec3 inv, float tMin, float tMax) {
   vec4 tx0 = (n.loX - o.x) * inv.x, tx1 = (n.hiX - o.x) * inv.x;
   vec4 ty0 = (n.loY - o.y) * inv.y, ty1 = (n.hiY - o.y) * inv.y;
   vec4 tz0 = (n.loZ - o.z) * inv.z, tz1 = (n.hiZ - o.z) * inv.z;
   vec4 tNear = max(max(min(tx0, tx1), min(ty0, ty1)), max(min(tz0, tz1), vec4(tMin)));
   vec4 tFar = min(min(max(tx0, tx1), max(ty0, ty1)), min(max(tz0, tz1), vec4(tMax))) * 1.0000004;
-  vec4 result;
-  for (int k = 0; k < 4; ++k) result[k] = (tNear[k] <= tFar[k] && n.child[k] != kEmptyChild) ? tNear[k] : kInf;
-  return result;
+  bvec4 entered = bvec4(tNear.x <= tFar.x, tNear.y <= tFar.y, tNear.z <= tFar.z, tNear.w <= tFar.w);
+  bvec4 present = notEqual(n.child, ivec4(kEmptyChild));
+  return mix(vec4(kInf), tNear, bvec4(entered.x && present.x, entered.y && present.y, entered.z && present.z,
+                                      entered.w && present.w));
 }
+
+// Orders two (entry, child) pairs nearest first: a step of the sorting network below.
+#define SDG_ORDER(ta, ca, tb, cb) \
+  if (tb < ta) {                  \
+    float t_ = ta;                \
+    ta = tb;                      \
+    tb = t_;                      \
+    int c_ = ca;                  \
+    ca = cb;                      \
+    cb = c_;                      \
+  }
 
 // Möller-Trumbore with Embree's barycentrics (p = (1-u-v) p0 + u p1 + v p2).
 bool hitTriangle(vec3 o, vec3 d, vec4 v0, vec4 e1, vec4 e2, float tMin, float tMax, out float t, out float u, out float v) {
@@ -314,19 +327,20 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
     } else {  // an inner node of either level
       Node n = instance < 0 ? topNodes[item] : nodes[nodeBase + item];
       vec4 entry = boxEntry(n, ro, inv, tMin, tMax);
-      // Push the farther children first, so the nearest is visited next.
-      for (int pass = 0; pass < 4; ++pass) {
-        int best = -1;
-        float bestT = -1.0;
-        for (int k = 0; k < 4; ++k)
-          if (entry[k] < kInf && entry[k] > bestT) {
-            best = k;
-            bestT = entry[k];
-          }
-        if (best < 0) break;
-        entry[best] = kInf;
-        if (top < kStackSize) stack[top++] = n.child[best];
-      }
+      // The children sorted by entry distance (a five-step network, no
+      // indexing by a variable), then pushed farthest first, so the nearest
+      // is visited next; missed ones (kInf) sort last and are not pushed.
+      float t0 = entry.x, t1 = entry.y, t2 = entry.z, t3 = entry.w;
+      int c0 = n.child.x, c1 = n.child.y, c2 = n.child.z, c3 = n.child.w;
+      SDG_ORDER(t0, c0, t1, c1)
+      SDG_ORDER(t2, c2, t3, c3)
+      SDG_ORDER(t0, c0, t2, c2)
+      SDG_ORDER(t1, c1, t3, c3)
+      SDG_ORDER(t1, c1, t2, c2)
+      if (t3 < kInf && top < kStackSize) stack[top++] = c3;
+      if (t2 < kInf && top < kStackSize) stack[top++] = c2;
+      if (t1 < kInf && top < kStackSize) stack[top++] = c1;
+      if (t0 < kInf && top < kStackSize) stack[top++] = c0;
       continue;
     }
     // Enter instance `enter`: its mesh's root above the current stack.
