@@ -15,7 +15,7 @@ if [ "$mode" = bundle ]; then
   build=${2:?BUILD_DIR}
   out=${3:?OUT_DIR}
   mkdir -p "$out/bin" "$out/lib"
-  cp "$build/app/sdgbehave" "$build/tools/sdg_bench_pathtrace" "$out/bin/"
+  cp "$build/app/sdgbehave" "$build/tools/sdg_bench_pathtrace" "$build/tools/sdg_tracer_agreement" "$out/bin/"
   cp "$0" "$out/gpu-bench.sh"
   cp -r scenes "$out/"
   for exe in "$out"/bin/*; do
@@ -54,5 +54,13 @@ SDG_GPU_TIMING=1 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$
 "$bin/sdg_bench_pathtrace" "$work/demo_stage.yaml" 512 512 4 "$cores" denoise
 "$bin/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 1024 "$cores" gpu
 "$bin/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 64 "$cores"
+"$bin/sdg_tracer_agreement" scenes/examples/cornell_box.yaml 256 256 1024 "$cores"
+"$bin/sdg_tracer_agreement" "$work/demo_stage.yaml" 256 256 1024 "$cores"
+for run in 1 2; do  # the second is the figure: the first compiles the kernels into the driver's cache
+  "$bin/sdgbehave" run scenes/warehouse.yaml --render-mode pathtraced --samples 4 --set render.denoise=true \
+    --set render.pathtracer=gpu --backend egl --threads "$cores" --seed 10 --frames 300 --overwrite \
+    --out "$work/run$run" > /dev/null
+done
+grep -o '"frames_per_second": [0-9.]*' "$work/run2/run_summary.json"
 set +x
 rm -rf "$work"
