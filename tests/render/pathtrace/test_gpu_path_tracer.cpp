@@ -89,22 +89,14 @@ double worstBlockBias(const PathTracedFrame& a, const PathTracedFrame& b) {
   return worst / meanOf(b);
 }
 
-// Compares the tracers at one size and sample count (nothing where the GPU
-// tracer cannot run), with the GPU's scene in one world-space BVH (the
-// default for small stages) and in two levels.
-void checkAgreement(const RenderList& list, int w, int h, int samples, size_t maxFlatTriangles);
+// Compares the tracers at one size and sample count (nothing where the GPU tracer cannot run).
 void checkAgreement(const RenderList& list, int w, int h, int samples) {
-  checkAgreement(list, w, h, samples, size_t(1) << 16);
-  checkAgreement(list, w, h, samples, 0);
-}
-void checkAgreement(const RenderList& list, int w, int h, int samples, size_t maxFlatTriangles) {
   PathTraceSettings settings;
   settings.samples = samples;
   settings.maxBounces = 8;
   auto gpu = gpuTracer(settings);
   if (!gpu) return;
-  gpu->setMaxFlatTriangles(maxFlatTriangles);
-  INFO("device: " << gpu->device() << (maxFlatTriangles == 0 ? ", two levels" : ", flat level"));
+  INFO("device: " << gpu->device());
   const PathTracedFrame cpu1 = trace(list, w, h, settings, 1), cpu2 = trace(list, w, h, settings, 2);
   const PathTracedFrame gpu1 = gpuTrace(*gpu, list, w, h, 1), gpu2 = gpuTrace(*gpu, list, w, h, 2);
   // Labels: the same centre rays and surfaces.
@@ -210,8 +202,6 @@ TEST_CASE("gpu path tracer: a moved instance moves in the image; the meshes stay
   settings.maxBounces = 1;
   auto gpu = gpuTracer(settings);
   if (!gpu) return;
-  const size_t flatLimit = GENERATE(size_t(1) << 16, size_t(0));
-  gpu->setMaxFlatTriangles(flatLimit);
   RenderList list = renderListOf(kCornell);
   const PathTracedFrame before = gpuTrace(*gpu, list, 32, 32, 1);
   size_t ball = 0;

@@ -41,10 +41,10 @@ constexpr int64_t kPathsPerDispatch = 1 << 20;
 
 enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
-  kTextureTable, kTexels, kLights, kWorldTriangles, kBindingCount
+  kTextureTable, kTexels, kLights, kBindingCount
 };
 constexpr GLuint kDenoiseWork = 2;  // the denoise kernel's binding of `denoiseWork`
-constexpr GLuint kDisplayBinding = 15;  // pt_display.glsl's `display`, apart from the tracer's
+constexpr GLuint kDisplayBinding = 13;  // pt_display.glsl's `display`
 constexpr int kDisplayGroup = 8;  // pt_display.glsl's local size, both axes
 
 // SDG_GPU_KERNEL_DIR=DIR: the kernels' GLSL read from DIR's pt_*.glsl
@@ -74,9 +74,8 @@ struct ParamsHeader {
   uint32_t seed[4];
   int32_t dome[4];
   int32_t domeTables[4];
-  int32_t options[4];  // 1: the top level is the flat one (gpu_scene.h), -, -, -
 };
-static_assert(sizeof(ParamsHeader) == 208, "the kernel's Params header is 208 bytes");
+static_assert(sizeof(ParamsHeader) == 192, "the kernel's Params header is 192 bytes");
 
 struct FilmPixel {  // pt_common.glsl's FilmPixel
   float sum[4], albedo[4], normalDepth[4];
@@ -313,7 +312,6 @@ struct GpuPathTracer::Impl {
     if (s.instancesChanged) {
       upload(kTopNodes, s.topNodes.data(), s.topNodes.size() * sizeof(GpuBvhNode));
       upload(kInstances, s.instances.data(), s.instances.size() * sizeof(GpuInstanceRecord));
-      upload(kWorldTriangles, s.worldTriangles.data(), s.worldTriangles.size() * sizeof(float));
       s.instancesChanged = false;
     }
     if (s.texelsChanged) {
@@ -361,7 +359,6 @@ struct GpuPathTracer::Impl {
     std::copy(scene.domeTables, scene.domeTables + 4, header.domeTables);
     header.size[0] = width;
     header.size[1] = height;
-    header.options[0] = scene.flat ? 1 : 0;
     uploadScene(header);
     const size_t pixels = size_t(width) * size_t(height);
     if (capacity[kFilm] < pixels * sizeof(FilmPixel)) {
@@ -516,7 +513,6 @@ void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings, 
   impl_->denoiseWithVariance = perPixelVariance;
 }
 void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispatch = std::max(samples, 0); }
-void GpuPathTracer::setMaxFlatTriangles(size_t triangles) { impl_->scene.maxFlatTriangles = triangles; }
 std::string GpuPathTracer::device() const { return impl_->context->description(); }
 bool GpuPathTracer::onGpu() const { return impl_->context->onGpu(); }
 

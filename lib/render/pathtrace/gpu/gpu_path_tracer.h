@@ -76,12 +76,6 @@ class GpuPathTracer {
   // Samples per pixel in one dispatch; 0 (the default): about a million
   // paths a dispatch. Changes the timing, never the image.
   void setSamplesPerDispatch(int samples);
-  // Stages whose instances hold at most this many triangles in all are
-  // traced through one world-space BVH (gpu_scene.h); others through a
-  // BVH over the instances. Default 65,536; tests set 0 to trace the
-  // two-level form on small stages. Set before the first frame. Changes
-  // the timing, not the image beyond float rounding.
-  void setMaxFlatTriangles(size_t triangles);
   // The GL renderer and version strings.
   std::string device() const;
   bool onGpu() const;

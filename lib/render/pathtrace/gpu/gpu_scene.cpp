@@ -45,7 +45,6 @@ struct GpuSceneData::Mesh {
   MeshData data;
   uint32_t record = 0;
   bool empty = true;
-  size_t firstTriangle = 0, triangleCount = 0;  // its range of `triangles`, in its leaf order
 };
 
 GpuSceneData::GpuSceneData(const AssetResolver& assets) : assets_(assets), textureCache_(assets) {
@@ -102,8 +101,6 @@ uint32_t GpuSceneData::meshFor(const RenderItem& item) {
   }
   const GpuBvh bvh = builder_.build(boxes, false);
   record.flags[2] = bvh.rootLink;
-  mesh->firstTriangle = triangles.size() / 12;
-  mesh->triangleCount = bvh.order.size();
   meshNodes.insert(meshNodes.end(), bvh.nodes.begin(), bvh.nodes.end());
   for (uint32_t t : bvh.order) {
     const uint32_t* tri = &d.indices[3 * size_t(t)];
@@ -143,8 +140,6 @@ int32_t GpuSceneData::textureIndex(const PtTexture* texture) {
 void GpuSceneData::update(const RenderList& list) {
   materials.clear();
   std::vector<GpuInstanceRecord> frameInstances;
-  std::vector<const Mesh*> frameMeshes;
-  size_t frameTriangles = 0;
   std::vector<Eigen::AlignedBox3f> boxes;
   std::vector<double> key;
   bounds.setEmpty();
@@ -188,8 +183,6 @@ void GpuSceneData::update(const RenderList& list) {
     std::copy(ids, ids + 4, r.ids);
     r.flags[0] = cutOut;
     frameInstances.push_back(r);
-    frameMeshes.push_back(&mesh);
-    frameTriangles += mesh.triangleCount;
     Eigen::AlignedBox3f box;
     box.setEmpty();
     const Eigen::Matrix3f linearF = linear.cast<float>();
@@ -205,59 +198,15 @@ void GpuSceneData::update(const RenderList& list) {
   }
   // The top level: rebuilt only when an instance changed.
   if (key != lastTransforms_ || instances.empty() != frameInstances.empty()) {
-    flat = frameTriangles <= maxFlatTriangles;
-    if (flat) {
-      instances = std::move(frameInstances);
-      buildFlatLevel(frameMeshes);
-    } else {
-      const GpuBvh top = builder_.build(boxes, false);
-      topNodes = top.nodes;
-      topRoot = top.rootLink;
-      instances.clear();
-      for (uint32_t i : top.order) instances.push_back(frameInstances[i]);
-      worldTriangles.clear();
-    }
+    const GpuBvh top = builder_.build(boxes, false);
+    topNodes = top.nodes;
+    topRoot = top.rootLink;
+    instances.clear();
+    for (uint32_t i : top.order) instances.push_back(frameInstances[i]);
     lastTransforms_ = std::move(key);
     instancesChanged = true;
   }
   packLights(list);
-}
-
-// Every instance's triangles taken into world space by the instance's own
-// float rows (those the kernel shades with), under one BVH. A few thousand
-// triangles (the demo's stage: 3,500) build in well under a millisecond;
-// per ray, no instance is entered, no ray transformed, and the boxes are
-// tight around what moved rather than around each instance's box.
-void GpuSceneData::buildFlatLevel(const std::vector<const Mesh*>& frameMeshes) {
-  std::vector<Eigen::AlignedBox3f> boxes;
-  std::vector<float> unordered;
-  for (size_t i = 0; i < instances.size(); ++i) {
-    const GpuInstanceRecord& inst = instances[i];
-    const Mesh& mesh = *frameMeshes[i];
-    auto apply = [&](const float* v, float w) {
-      Vec3f out;
-      for (int r = 0; r < 3; ++r)
-        out[r] = inst.world[4 * r] * v[0] + inst.world[4 * r + 1] * v[1] + inst.world[4 * r + 2] * v[2] + inst.world[4 * r + 3] * w;
-      return out;
-    };
-    for (size_t t = 0; t < mesh.triangleCount; ++t) {
-      const float* local = &triangles[12 * (mesh.firstTriangle + t)];
-      const Vec3f p0 = apply(local, 1.0f), e1 = apply(local + 4, 0.0f), e2 = apply(local + 8, 0.0f);
-      const float packed[12] = {p0.x(), p0.y(), p0.z(), local[3], e1.x(), e1.y(), e1.z(), float(i),
-                                e2.x(), e2.y(), e2.z(), inst.flags[0] ? 1.0f : 0.0f};
-      unordered.insert(unordered.end(), packed, packed + 12);
-      Eigen::AlignedBox3f box(p0);
-      box.extend(Vec3f(p0 + e1));
-      box.extend(Vec3f(p0 + e2));
-      boxes.push_back(box);
-    }
-  }
-  const GpuBvh bvh = builder_.build(boxes, false);
-  topNodes = bvh.nodes;
-  topRoot = bvh.rootLink;
-  worldTriangles.clear();
-  worldTriangles.reserve(unordered.size());
-  for (uint32_t t : bvh.order) worldTriangles.insert(worldTriangles.end(), &unordered[12 * size_t(t)], &unordered[12 * size_t(t)] + 12);
 }
 
 void GpuSceneData::packLights(const RenderList& list) {

@@ -58,16 +58,10 @@ class GpuSceneData {
   std::vector<uint32_t> indices; // 4 per triangle: vertex indices, part
   std::vector<GpuMeshRecord> meshes;
   bool meshesChanged = false;
-  // The frame. With few triangles in all (maxFlatTriangles), `flat`: the
-  // top level is one BVH over every instance's triangles in world space
-  // (worldTriangles), so a ray enters no instance; else it is a BVH over
-  // the instances, whose leaves enter each one's mesh.
-  size_t maxFlatTriangles = size_t(1) << 16;
+  // The frame.
   std::vector<GpuBvhNode> topNodes;
   int32_t topRoot = 0;
-  bool flat = false;
-  std::vector<float> worldTriangles;  // 12 per triangle: v0 (w: the mesh's triangle), edge 1 (w: instance), edge 2 (w: 1 where cut out)
-  std::vector<GpuInstanceRecord> instances;  // in the top level's leaf order (flat: the render list's)
+  std::vector<GpuInstanceRecord> instances;  // in the top level's leaf order
   bool instancesChanged = false;
   std::vector<GpuMaterialRecord> materials;
   std::vector<GpuLightRecord> lights;
@@ -91,7 +85,6 @@ class GpuSceneData {
   uint32_t meshFor(const RenderItem& item);
   int32_t textureIndex(const PtTexture* texture);
   void packLights(const RenderList& list);
-  void buildFlatLevel(const std::vector<const Mesh*>& frameMeshes);
 
   const AssetResolver& assets_;
   GpuBvhBuilder builder_;

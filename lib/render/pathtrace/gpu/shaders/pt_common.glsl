@@ -23,7 +23,6 @@ layout(std430, binding = 0) readonly buffer Params {
   uvec4 seed;        // frame seed (low, high), top-level root item, label pass (1: write the labels)
   ivec4 dome;        // width, height (0: no map), first texel (uint words in `texels`), pick cdf offset
   ivec4 domeTables;  // offsets: row cdf, column cdfs, row cosines, texel solid angles
-  ivec4 options;     // 1: the top level holds world-space triangles (gpu_scene.h's flat level), -, -, -
   float tables[];
 } params;
 

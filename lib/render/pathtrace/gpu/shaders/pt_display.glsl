@@ -17,7 +17,7 @@ struct FilmPixel {
 layout(std430, binding = 1) readonly buffer Film { FilmPixel film[]; };
 // RGBA8 per pixel (red in the low byte), then, with `withRadiance`, three
 // floats per pixel as their bits.
-layout(std430, binding = 15) writeonly buffer Display { uint display[]; };
+layout(std430, binding = 13) writeonly buffer Display { uint display[]; };
 
 uniform int width, height, withRadiance;
 uniform float radianceDivisor;  // the samples for a sum, 1 for the denoiser's output

@@ -33,9 +33,6 @@ struct Instance {
   ivec4 flags;     // cut-out, -, -, -
 };
 layout(std430, binding = 8) readonly buffer Instances { Instance instances[]; };
-// The flat level's triangles (params.options.x): world space, in its leaf order: v0 (w: the mesh's
-// triangle), edge 1 (w: the instance), edge 2 (w: 1 where the instance is cut out).
-layout(std430, binding = 13) readonly buffer WorldTriangles { vec4 worldTriangles[]; };
 struct Material {
   vec4 baseColor;   // rgb, roughness
   vec4 scalars;     // metallic, roughness influence, metallic influence, normal scale
@@ -279,8 +276,6 @@ const int kEnterInstance = 0x40000000;
 // ray taken into the mesh's space unnormalised (so t is the same in both).
 // One stack and one loop, not a loop per level: half the local memory, and
 // the warp's invocations stay in the same loop whatever level each is in.
-// With the flat level (params.options.x), the top level's leaves are
-// world-space triangles and no instance is entered.
 // Counted in the pixel's ray counter by the callers.
 bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
   hit.instance = hit.triangle = 0u;
@@ -292,7 +287,6 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
   stack[top++] = int(params.seed.z);
   int instance = -1, instanceBase = 0, nodeBase = 0, triBase = 0;
   bool cutOut = false, found = false;
-  bool flatLevel = params.options.x != 0;
   for (;;) {
     if (instance >= 0 && top == instanceBase) {  // the mesh is done: back to the top level
       instance = -1;
@@ -305,35 +299,23 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
     int enter = -1;
     if (instance < 0 && item >= kEnterInstance) {
       enter = item - kEnterInstance;
-    } else if (instance < 0 && item < 0 && !flatLevel) {  // a top-level leaf: its instances (stored in leaf order)
+    } else if (instance < 0 && item < 0) {  // a top-level leaf: its instances (stored in leaf order)
       int code = ~item;
       int first = code >> 4, count = (code & 15) + 1;
       for (int k = count - 1; k >= 1; --k)
         if (top < kStackSize) stack[top++] = kEnterInstance + first + k;
       enter = first;
-    } else if (item < 0) {  // a mesh's leaf, or the flat level's
+    } else if (item < 0) {  // a mesh's leaf
       int code = ~item;
       int first = code >> 4, count = (code & 15) + 1;
       for (int k = 0; k < count; ++k) {
-        vec4 v0, e1, e2;
-        if (instance >= 0) {
-          int at = 3 * (triBase + first + k);
-          v0 = triangles[at];
-          e1 = triangles[at + 1];
-          e2 = triangles[at + 2];
-        } else {
-          int at = 3 * (first + k);
-          v0 = worldTriangles[at];
-          e1 = worldTriangles[at + 1];
-          e2 = worldTriangles[at + 2];
-        }
+        int at = 3 * (triBase + first + k);
         float t, u, v;
-        if (!hitTriangle(ro, rd, v0, e1, e2, tMin, tMax, t, u, v)) continue;
-        uint triangle = uint(v0.w);
-        uint owner = instance >= 0 ? uint(instance) : uint(e1.w);
-        if ((instance >= 0 ? cutOut : e2.w != 0.0) && !opaqueAt(owner, triangle, u, v)) continue;
+        if (!hitTriangle(ro, rd, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
+        uint triangle = uint(triangles[at].w);
+        if (cutOut && !opaqueAt(uint(instance), triangle, u, v)) continue;
         tMax = t;
-        hit.instance = owner;
+        hit.instance = uint(instance);
         hit.triangle = triangle;
         hit.u = u;
         hit.v = v;
