@@ -159,6 +159,10 @@ namespace {
 
 struct TraceCounters {
   uint64_t rays = 0, cameraRays = 0, dropped = 0;
+  std::vector<TracedRay>* log = nullptr;  // benchmarks only
+  void record(const PtRay& ray, TracedRayKind kind) {
+    if (log) log->push_back(TracedRay{ray, kind});
+  }
 };
 
 // One path's radiance: pbrt-v4's PathIntegrator::Li with this renderer's
@@ -182,6 +186,7 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
     SurfaceHit hit;
     const bool onSurface = scene.intersect(ray, cutOuts, hit);
     ++counters.rays;
+    counters.record(ray, depth == 0 ? TracedRayKind::Camera : TracedRayKind::Bounce);
     // A light shape in front of the surface: its emission, and the path ends.
     // Camera rays pass through light shapes: the rasterizer, the labels and
     // Blender (whose lamps are invisible to the camera) do not show them
@@ -232,6 +237,7 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
         const PtRay shadow{origin, light.direction, 0.0f,
                            std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)};
         ++counters.rays;
+        counters.record(shadow, TracedRayKind::Shadow);
         if (!scene.occluded(shadow, cutOuts) && !lights.blocks(shadow, light.light)) {
           const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdf.pdf(woLocal, wiLocal));
           radiance += beta.cwiseProduct(f).cwiseProduct(light.radiance) * (weight / light.pdf);
@@ -262,7 +268,9 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
 }
 
 // The label planes of one pixel, from the ray through its centre.
-void traceLabels(const PtFrameData& frame, const PtRay& ray, const Vec3f& eye, size_t pixel, PathTracedFrame& out) {
+void traceLabels(const PtFrameData& frame, const PtRay& ray, const Vec3f& eye, size_t pixel, PathTracedFrame& out,
+                 TraceCounters& counters) {
+  counters.record(ray, TracedRayKind::Camera);
   SurfaceHit hit;
   if (!frame.scene->intersect(ray, frame.cutOuts(), hit)) return;
   const SurfaceGeometry g = frame.scene->geometry(hit);
@@ -327,6 +335,10 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
   const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
   const int threads = std::min(settings_.threads, tilesX * tilesY);
   std::vector<TraceCounters> counters(static_cast<size_t>(threads));
+  if (rayLog_) {
+    rayLog_->perThread.assign(size_t(threads), {});
+    for (int t = 0; t < threads; ++t) counters[size_t(t)].log = &rayLog_->perThread[size_t(t)];
+  }
   const auto traceStart = std::chrono::steady_clock::now();
   forEachTile(tilesX * tilesY, threads, [&](int thread, int tile) {
     TraceCounters& count = counters[size_t(thread)];
@@ -353,7 +365,7 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
         for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[c] / n);
         const double mean = (0.2126 * sum[0] + 0.7152 * sum[1] + 0.0722 * sum[2]) / n;
         out.variance[pixel] = n > 1 ? float(std::max(0.0, luminance2 / n - mean * mean) / (n - 1)) : 0.0f;
-        traceLabels(frame, camera.ray(x + 0.5, y + 0.5), eye, pixel, out);
+        traceLabels(frame, camera.ray(x + 0.5, y + 0.5), eye, pixel, out, count);
         count.cameraRays += uint64_t(settings_.samples) + 1;
         ++count.rays;
       }
@@ -394,6 +406,66 @@ double PathTracer::primaryRayRate(const RenderList& list, size_t cameraIndex, in
   for (uint64_t h : hits) total += h;
   (void)total;
   return double(std::max(repeats, 1)) * double(width) * double(height) / seconds;
+}
+
+double PathTracer::replayRate(const RenderList& list, const RayLog& log, bool streams, int repeats) {
+  PtFrameData frame;
+  prepare(list, frame);
+  const EmbreeScene& scene = *frame.scene;
+  const CutOutTest* cutOuts = frame.cutOuts();
+  // Streams: each thread's rays in chunks of 1,024, each chunk's rays
+  // grouped by kind (camera, bounce, shadow), as a wavefront tracer would
+  // cast them; arranged before the clock starts.
+  constexpr size_t kChunk = 1024;
+  struct Run {
+    size_t first, count;
+    TracedRayKind kind;
+  };
+  const size_t threads = log.perThread.size();
+  std::vector<std::vector<PtRay>> rays(threads);
+  std::vector<std::vector<Run>> runs(threads);
+  size_t total = 0;
+  for (size_t t = 0; t < threads; ++t) {
+    const std::vector<TracedRay>& in = log.perThread[t];
+    total += in.size();
+    for (size_t first = 0; first < in.size(); first += kChunk) {
+      const size_t end = std::min(in.size(), first + kChunk);
+      for (TracedRayKind kind : {TracedRayKind::Camera, TracedRayKind::Bounce, TracedRayKind::Shadow}) {
+        const size_t start = rays[t].size();
+        for (size_t i = first; i < end; ++i)
+          if (in[i].kind == kind || !streams) rays[t].push_back(in[i].ray);
+        if (!streams) {
+          for (size_t i = first; i < end; ++i) runs[t].push_back(Run{start + (i - first), 1, in[i].kind});
+          break;
+        }
+        if (rays[t].size() > start) runs[t].push_back(Run{start, rays[t].size() - start, kind});
+      }
+    }
+  }
+  std::vector<std::vector<SurfaceHit>> hits(threads, std::vector<SurfaceHit>(kChunk));
+  std::vector<std::vector<uint8_t>> found(threads, std::vector<uint8_t>(kChunk));
+  std::vector<uint64_t> hitCount(threads, 0);  // keeps the casting from being optimised away
+  const auto start = std::chrono::steady_clock::now();
+  for (int r = 0; r < std::max(repeats, 1); ++r)
+    forEachTile(int(threads), int(threads), [&](int, int t) {
+      const std::vector<PtRay>& in = rays[size_t(t)];
+      SurfaceHit* hit = hits[size_t(t)].data();
+      uint8_t* yes = found[size_t(t)].data();
+      uint64_t& count = hitCount[size_t(t)];
+      for (const Run& run : runs[size_t(t)]) {
+        const PtRay* first = in.data() + run.first;
+        if (!streams) {
+          count += run.kind == TracedRayKind::Shadow ? scene.occluded(*first, cutOuts)
+                                                      : scene.intersect(*first, cutOuts, *hit);
+          continue;
+        }
+        if (run.kind == TracedRayKind::Shadow) scene.occludedMany(first, run.count, false, cutOuts, yes);
+        else scene.intersectMany(first, run.count, run.kind == TracedRayKind::Camera, cutOuts, hit, yes);
+        count += yes[0];
+      }
+    });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return double(std::max(repeats, 1)) * double(total) / seconds;
 }
 
 void toneMap(const PathTracedFrame& frame, float exposureScale, uint8_t* rgba) {

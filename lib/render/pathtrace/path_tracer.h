@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
+#include "render/pathtrace/embree_scene.h"
 #include "render/render_list.h"
 
 namespace sdg {
@@ -66,6 +67,17 @@ struct PathTraceStats {
   int threads = 0;
 };
 
+// Benchmarks: the rays a render() cast, so that Embree alone can cast the
+// very same rays again (PathTracer::replayRate).
+enum class TracedRayKind : uint8_t { Camera, Bounce, Shadow };
+struct TracedRay {
+  PtRay ray;
+  TracedRayKind kind;
+};
+struct RayLog {
+  std::vector<std::vector<TracedRay>> perThread;  // each thread's rays in the order it cast them
+};
+
 struct PtFrameData;  // path_tracer.cpp: what one render() reads while its threads run
 
 class PathTracer {
@@ -91,6 +103,17 @@ class PathTracer {
   // all threads). For comparison with stats(); renders nothing.
   double primaryRayRate(const RenderList& list, size_t cameraIndex, int width, int height, int repeats = 4);
 
+  // Benchmarks: while `log` is set (null: not), render() records every ray
+  // it casts into it.
+  void recordRays(RayLog* log) { rayLog_ = log; }
+  // Plain Embree ray casting of a RayLog's rays on the same frame scene (the
+  // list render() recorded it from), no shading: rays per second over all
+  // threads, each thread casting the rays it cast in the render. With
+  // `streams`, every 1,024 rays of a thread are cast by kind through
+  // EmbreeScene's streams (camera rays as coherent packets); else one
+  // rtcIntersect1 / rtcOccluded1 call per ray, as recorded.
+  double replayRate(const RenderList& list, const RayLog& log, bool streams, int repeats = 4);
+
  private:
   struct Caches;
   void prepare(const RenderList& list, PtFrameData& frame);
@@ -99,6 +122,7 @@ class PathTracer {
   PathTraceSettings settings_;
   std::unique_ptr<Caches> caches_;
   PathTraceStats stats_;
+  RayLog* rayLog_ = nullptr;
 };
 
 // The rasterizer's tone curve (display = 1 - exp(-radiance * exposureScale), then sRGB, rounded) into RGBA8, alpha 255.
