@@ -78,6 +78,7 @@ struct RayLog {
   std::vector<std::vector<TracedRay>> perThread;  // each thread's rays in the order it cast them
 };
 
+struct PtWaveBuffers;  // path_tracer.cpp: a thread's paths and ray streams, kept from frame to frame
 struct PtFrameData;  // path_tracer.cpp: what one render() reads while its threads run
 
 class PathTracer {
@@ -123,6 +124,7 @@ class PathTracer {
   std::unique_ptr<Caches> caches_;
   PathTraceStats stats_;
   RayLog* rayLog_ = nullptr;
+  std::vector<std::unique_ptr<PtWaveBuffers>> waves_;  // per thread
 };
 
 // The rasterizer's tone curve (display = 1 - exp(-radiance * exposureScale), then sRGB, rounded) into RGBA8, alpha 255.

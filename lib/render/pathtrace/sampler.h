@@ -16,6 +16,13 @@
 //
 // A stream depends only on (frame seed, pixel x, y, sample index, slot):
 // never on the thread that draws it nor on the order pixels are drawn.
+// The GPU tracer draws the same numbers (gpu/shaders/pt_common.glsl).
+//
+// Speed: a slot's hashed seeds depend on the pixel and the slot, not on the
+// sample, so a sampler works them out once for its pixel's first
+// kCachedSlots slots and every later sample reuses them; Sobol's second
+// dimension comes from byte tables. Both give exactly the numbers of the
+// plain formulas (sobol(), nestedUniformScramble()).
 #include <cstdint>
 
 #include "stage/math_types.h"
@@ -33,12 +40,29 @@ class PixelSampler {
   // The next slot's first coordinate, in [0, 1).
   float next1D();
 
+  // Slots whose seeds a sampler keeps: a path of the default 8 bounces
+  // draws 41.
+  static constexpr uint32_t kCachedSlots = 48;
+
  private:
-  uint32_t slotSeed();
+  // A slot's scramble keys: the seed of the index shuffle and of each
+  // coordinate's scramble, each with the odd multiplier its hash derives
+  // from it.
+  struct SlotKeys {
+    uint32_t shuffle, shuffleMultiplier;
+    uint32_t x, xMultiplier;
+    uint32_t y, yMultiplier;
+  };
+  const SlotKeys& nextSlot();
+  // The shuffled sample index for `keys`, bit-reversed and not.
+  uint32_t shuffledIndex(const SlotKeys& keys) const;
 
   uint64_t pixelSeed_;
-  uint32_t index_ = 0;
+  uint32_t reversedIndex_ = 0;
   uint32_t slot_ = 0;
+  uint32_t cachedSlots_ = 0;  // slots [0, cachedSlots_) of cache_ are worked out
+  SlotKeys scratch_;          // a slot beyond the cache
+  SlotKeys cache_[kCachedSlots];
 };
 
 // The building blocks, exposed for the tests.
