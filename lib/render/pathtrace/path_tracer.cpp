@@ -270,18 +270,19 @@ bool shadeVertex(const PtFrameData& frame, int maxBounces, int depth, PtWavePath
   const Vec3f side = g.geometricNormal.dot(wo) < 0.0f ? Vec3f(-g.geometricNormal) : g.geometricNormal;
   const ShadingFrame shading = ShadingFrame::fromNormal(surface.normal);
   const PbrBsdf bsdf(surface.material);
-  const Vec3f woLocal = shading.toLocal(wo);
+  const PbrBsdf::View view = bsdf.view(shading.toLocal(wo));
   const Vec3f origin = offsetOrigin(g.position, side);
 
   // Next-event estimation: one light, one direction, one shadow ray.
   LightSample light;
   if (lights.sample(g.position, surface.normal, uPick, uLight, light) && light.direction.dot(side) > 0.0f) {
     const Vec3f wiLocal = shading.toLocal(light.direction);
-    const Vec3f f = lights.response(light.light, bsdf.evalLobes(woLocal, wiLocal));
+    float bsdfPdf;
+    const Vec3f f = lights.response(light.light, bsdf.evalLobes(view, wiLocal, bsdfPdf));
     if (f.maxCoeff() > 0.0f) {
       wave.shadowRays.push_back(PtRay{origin, light.direction, 0.0f,
                                       std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)});
-      const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdf.pdf(woLocal, wiLocal));
+      const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdfPdf);
       wave.pending.push_back(
           PtPendingLight{path.beta.cwiseProduct(f).cwiseProduct(light.radiance) * (weight / light.pdf), pathIndex,
                        light.light});
@@ -289,7 +290,8 @@ bool shadeVertex(const PtFrameData& frame, int maxBounces, int depth, PtWavePath
   }
 
   // The BSDF's direction continues the path.
-  const std::optional<BsdfSample> next = bsdf.sample(woLocal, uBsdf, uLobe);
+  BsdfLobes sampledLobes;
+  const std::optional<BsdfSample> next = bsdf.sample(view, uBsdf, uLobe, sampledLobes);
   if (!next) return false;
   const Vec3f wi = shading.toWorld(next->wi).normalized();
   if (!(wi.dot(side) > 0.0f)) return false;
@@ -297,7 +299,7 @@ bool shadeVertex(const PtFrameData& frame, int maxBounces, int depth, PtWavePath
   path.bsdfPdf = next->pdf;
   path.previousPoint = g.position;
   path.previousNormal = surface.normal;
-  if (lights.anyLobeMultiplier()) path.previousLobes = bsdf.evalLobes(woLocal, next->wi);
+  if (lights.anyLobeMultiplier()) path.previousLobes = sampledLobes;
   if (depth >= kRouletteDepth) {
     // pbrt-v4: continue with the probability of the throughput's largest
     // component (when below 1), and weigh the survivors up.
