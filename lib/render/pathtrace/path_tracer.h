@@ -18,12 +18,22 @@
 // unjittered ray, so they line up with its labels exactly; light shapes do
 // not appear in them.
 //
+// Traversal: wavefront tiles. A thread takes a 16 x 16 tile and traces one
+// sample of each of its pixels together, depth by depth: the tile's live
+// paths' rays go through one Embree ray stream (camera rays as coherent
+// packets), each vertex is shaded and queues its shadow ray, and the shadow
+// rays go through another stream. Against one rtcIntersect1 call a ray this
+// saves Embree's per-call cost and lets it trace nearby rays as packets.
+//
 // Determinism: a pixel's value depends only on the scene, the settings,
-// frameSeed and the pixel (render/pathtrace/sampler.h's streams, its own
-// sum in a fixed order); tiles are handed to threads from an atomic counter,
-// but no value is ever summed across pixels or threads, so the radiance is
-// byte-identical whatever `threads` is. Embree's BVHs are built on one
-// thread (embree_scene.h).
+// frameSeed, the pixel (render/pathtrace/sampler.h's streams, its own sum
+// in sample order) and the rays traced beside it in its tile's streams
+// (Embree's packets may break a tie between two equally close triangles,
+// on a shared edge, in another order than a lone ray): tiles are handed to
+// threads from an atomic counter, but a tile's streams are its own paths in
+// pixel order and no value is ever summed across pixels or threads, so the
+// radiance is byte-identical whatever `threads` is. Embree's BVHs are built
+// on one thread (embree_scene.h).
 #include <cstdint>
 #include <map>
 #include <memory>
