@@ -115,7 +115,8 @@ int main(int argc, char** argv) {
     std::vector<double> rates;
     for (int run = 0; run < 5; ++run) rates.push_back(tracer.replayRate(list, log, streams, 1));
     std::sort(rates.begin(), rates.end());
-    const std::string how = streams ? "as ray streams (camera rays coherent)" : "one rtcIntersect1/rtcOccluded1 call a ray";
+    const std::string how =
+        streams ? "as ray streams (camera rays coherent)" : "one rtcIntersect1/rtcOccluded1 call a ray";
     figure("plain Embree casting of the tracer's own rays per second per core, " + how, "Mrays/s", rates[2] * perCore,
            rates[0] * perCore, rates[4] * perCore);
     figure("the tracer's rays per second as a share of plain Embree casting of the same rays, " + how, "%",

@@ -201,15 +201,15 @@ struct PtPendingLight {
 
 // A thread's wave buffers, reused tile after tile.
 struct PtWaveBuffers {
-  std::vector<PixelSampler> samplers;          // the tile's pixels, row by row
-  std::vector<std::array<double, 4>> sums;     // per pixel: the radiance's RGB and luminance^2 over its samples
-  std::vector<PtWavePath> paths;                 // per pixel: its path of the sample being traced
-  std::vector<uint32_t> active, next;          // the paths still going, in pixel order
-  std::vector<PtRay> rays;                     // the active paths' rays, for one Embree stream
+  std::vector<PixelSampler> samplers;       // the tile's pixels, row by row
+  std::vector<std::array<double, 4>> sums;  // per pixel: the radiance's RGB and luminance^2 over its samples
+  std::vector<PtWavePath> paths;            // per pixel: its path of the sample being traced
+  std::vector<uint32_t> active, next;       // the paths still going, in pixel order
+  std::vector<PtRay> rays;                  // the active paths' rays, for one Embree stream
   std::vector<SurfaceHit> hits;
   std::vector<uint8_t> found;
   std::vector<PtRay> shadowRays;
-  std::vector<PtPendingLight> pending;           // one per shadow ray
+  std::vector<PtPendingLight> pending;  // one per shadow ray
   std::vector<uint8_t> occluded;
 };
 
@@ -237,8 +237,8 @@ bool shadeVertex(const PtFrameData& frame, int maxBounces, int depth, PtWavePath
     if (hit) toLights.tMax = hit->t;
     LightHit lightHit;
     if (lights.intersect(toLights, lightHit)) {
-      const float weight =
-          powerHeuristic(path.bsdfPdf, lights.pdf(lightHit.light, path.previousPoint, path.previousNormal, ray.direction));
+      const float lightPdf = lights.pdf(lightHit.light, path.previousPoint, path.previousNormal, ray.direction);
+      const float weight = powerHeuristic(path.bsdfPdf, lightPdf);
       Vec3f emitted = lightHit.radiance;
       if (lights.anyLobeMultiplier())
         emitted = emitted.cwiseProduct(lights.responseScale(lightHit.light, path.previousLobes));
@@ -429,7 +429,9 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
     const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
     const int tileWidth = x1 - x0;
     const size_t n = size_t(tileWidth) * size_t(y1 - y0);
-    auto pixelOf = [&](size_t i) { return size_t(y0 + int(i) / tileWidth) * size_t(width) + size_t(x0 + int(i) % tileWidth); };
+    auto pixelOf = [&](size_t i) {
+      return size_t(y0 + int(i) / tileWidth) * size_t(width) + size_t(x0 + int(i) % tileWidth);
+    };
     wave.samplers.clear();
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) wave.samplers.emplace_back(frameSeed, uint32_t(x), uint32_t(y));
@@ -470,7 +472,8 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
     wave.rays.resize(n);
     wave.hits.resize(n);
     wave.found.resize(n);
-    for (size_t i = 0; i < n; ++i) wave.rays[i] = camera.ray(x0 + int(i) % tileWidth + 0.5, y0 + int(i) / tileWidth + 0.5);
+    for (size_t i = 0; i < n; ++i)
+      wave.rays[i] = camera.ray(x0 + int(i) % tileWidth + 0.5, y0 + int(i) / tileWidth + 0.5);
     frame.scene->intersectMany(wave.rays.data(), n, true, frame.cutOuts(), wave.hits.data(), wave.found.data());
     for (size_t i = 0; i < n; ++i) {
       count.record(wave.rays[i], TracedRayKind::Camera);

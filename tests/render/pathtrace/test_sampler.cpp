@@ -198,7 +198,8 @@ TEST_CASE("sampler: pixels and slots are decorrelated", "[pathtrace][sampler]") 
   CHECK(meanSquaredR < 3.0 / 256.0);
 }
 
-TEST_CASE("sampler: the streams' numbers are pinned (the GPU tracer's GLSL port draws the same)", "[pathtrace][sampler]") {
+TEST_CASE("sampler: the streams' numbers are pinned (the GPU tracer's GLSL port draws the same)",
+          "[pathtrace][sampler]") {
   // An FNV-1a hash of the bits of mixed 1D and 2D draws, 60 slots a sample
   // (beyond the sampler's cached slots), jumps in the sample index, three
   // frame seeds. A change here changes every path-traced frame and must be
