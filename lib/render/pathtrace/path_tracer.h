@@ -27,9 +27,9 @@
 //
 // Determinism: a pixel's value depends only on the scene, the settings,
 // frameSeed, the pixel (render/pathtrace/sampler.h's streams, its own sum
-// in sample order) and the rays traced beside it in its tile's streams
-// (Embree's packets may break a tie between two equally close triangles,
-// on a shared edge, in another order than a lone ray): tiles are handed to
+// in sample order) and possibly the rays traced beside it in its tile's
+// streams (Embree's stream traversal does not promise a ray the hit it
+// would get alone, to the last bit): tiles are handed to
 // threads from an atomic counter, but a tile's streams are its own paths in
 // pixel order and no value is ever summed across pixels or threads, so the
 // radiance is byte-identical whatever `threads` is. Embree's BVHs are built
