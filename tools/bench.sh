@@ -26,6 +26,10 @@ done
 for spp in 16 64 256; do
   "$build/tools/sdg_bench_pathtrace" scenes/examples/cornell_box.yaml 256 256 $spp "$cores" denoise >> "$lines"
 done
+# The CPU tracer against plain Embree casting the very same rays (recorded,
+# then cast again without shading, one call per ray and as ray streams), on
+# one core: the demo's stage at 256 x 256, 4 samples (about 1 M rays kept).
+"$build/tools/sdg_bench_pathtrace" "$stage/demo_stage.yaml" 256 256 4 1 replay >> "$lines"
 # The denoiser's block bias and MAE at 4 samples against 256 samples of the
 # same tracer (the Cornell box, 128 x 128, 3 seeds; docs/performance.md).
 "$build/tools/sdg_denoise_quality" scenes/examples/cornell_box.yaml 128 128 4 256 "$cores" 3 >> "$lines"

@@ -2,15 +2,21 @@
 // traced (and denoised) at W x H with N samples on T threads: the time per
 // frame (median of 3 after a warm-up frame that loads meshes and builds
 // BVHs), the rays per second per core, and beside it what plain Embree ray
-// casting reaches on the same scene (each pixel's centre ray, closest hit
-// only). Prints one JSON object per figure. With `gpu`, the GPU tracer
+// casting reaches on the same scene (the centre rays alone); with `replay`,
+// also on the very same rays (recorded from one more frame, kept in memory,
+// 36 bytes a ray, then cast again without shading: one call per ray, and
+// through Embree's ray streams), and the tracer's rate as a share of
+// each. Prints one JSON object per figure; the radiance's
+// FNV-1a hash goes to stderr, to check that a change keeps frames
+// byte-identical. With `gpu`, the GPU tracer
 // (render/pathtrace/gpu) traces and denoises instead, and its rays per
 // second are the whole device's (the denoiser's time counted in).
-//   sdg_bench_pathtrace SCENE WIDTH HEIGHT SAMPLES THREADS [denoise] [gpu]
+//   sdg_bench_pathtrace SCENE WIDTH HEIGHT SAMPLES THREADS [denoise] [gpu] [replay]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,14 +62,15 @@ void printGpuDisplayFigures(GpuPathTracer& tracer, const RenderList& list, int w
 
 int main(int argc, char** argv) {
   if (argc < 6) {
-    std::fprintf(stderr, "usage: sdg_bench_pathtrace SCENE WIDTH HEIGHT SAMPLES THREADS [denoise] [gpu]\n");
+    std::fprintf(stderr, "usage: sdg_bench_pathtrace SCENE WIDTH HEIGHT SAMPLES THREADS [denoise] [gpu] [replay]\n");
     return 2;
   }
   const std::string file = argv[1];
   const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
   const int threads = std::atoi(argv[5]);
-  bool denoise = false, gpu = false;
+  bool denoise = false, gpu = false, replay = false;
   for (int a = 6; a < argc; ++a) {
+    replay = replay || std::string(argv[a]) == "replay";
     denoise = denoise || std::string(argv[a]) == "denoise";
     gpu = gpu || std::string(argv[a]) == "gpu";
   }
@@ -81,8 +88,7 @@ int main(int argc, char** argv) {
   ds.threads = unsigned(threads);
   Denoiser denoiser(ds);
   PathTracedFrame frame;
-  std::vector<double> seconds;
-  double raysPerSecond = 0;
+  std::vector<double> seconds, raysPerSecond;
   for (int run = 0; run < 4; ++run) {
     const auto start = std::chrono::steady_clock::now();
     if (gpuTracer) gpuTracer->render(list, 0, width, height, uint64_t(run), frame);
@@ -95,10 +101,17 @@ int main(int argc, char** argv) {
     if (run == 0) continue;  // meshes, textures, BVHs
     seconds.push_back(s);
     const PathTraceStats& stats = gpuTracer ? gpuTracer->stats() : tracer.stats();
-    raysPerSecond = std::max(raysPerSecond, double(stats.rays) / stats.seconds);
+    raysPerSecond.push_back(double(stats.rays) / stats.seconds);
   }
   std::sort(seconds.begin(), seconds.end());
-  const double plain = tracer.primaryRayRate(list, 0, width, height, 8);
+  std::sort(raysPerSecond.begin(), raysPerSecond.end());
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (float v : frame.radiance) {
+    uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    for (int b = 0; b < 4; ++b) hash = (hash ^ ((bits >> (8 * b)) & 0xffu)) * 0x100000001b3ull;
+  }
+  std::fprintf(stderr, "radiance hash (seed 3): %016llx\n", static_cast<unsigned long long>(hash));
   const std::string what = file.substr(file.find_last_of('/') + 1) + " " + std::to_string(width) + "x" +
                            std::to_string(height) + ", " + std::to_string(samples) + " spp" +
                            (denoise ? " + denoiser" : "") + ", " + std::to_string(threads) + " threads" +
@@ -106,16 +119,39 @@ int main(int argc, char** argv) {
   std::printf("{\"name\": \"path tracer: %s, per frame\", \"unit\": \"s\", \"median\": %.4f, \"min\": %.4f, "
               "\"max\": %.4f}\n",
               what.c_str(), seconds[1], seconds[0], seconds[2]);
+  auto figure = [&](const std::string& name, const char* unit, double median, double min, double max) {
+    std::printf("{\"name\": \"path tracer: %s, %s\", \"unit\": \"%s\", \"median\": %.3f, \"min\": %.3f, "
+                "\"max\": %.3f}\n",
+                what.c_str(), name.c_str(), unit, median, min, max);
+  };
   if (gpuTracer) {
-    std::printf("{\"name\": \"path tracer: %s, rays per second (the whole GPU)\", \"unit\": \"Mrays/s\", "
-                "\"median\": %.3f, \"min\": %.3f, \"max\": %.3f}\n",
-                what.c_str(), raysPerSecond / 1e6, raysPerSecond / 1e6, raysPerSecond / 1e6);
+    figure("rays per second (the whole GPU)", "Mrays/s", raysPerSecond[1] / 1e6, raysPerSecond[0] / 1e6,
+           raysPerSecond[2] / 1e6);
     printGpuDisplayFigures(*gpuTracer, list, width, height, what);
     return 0;
   }
-  std::printf("{\"name\": \"path tracer: %s, rays per second per core (plain Embree casting: %.3g)\", \"unit\": "
-              "\"Mrays/s\", \"median\": %.3f, \"min\": %.3f, \"max\": %.3f}\n",
-              what.c_str(), plain / 1e6 / threads, raysPerSecond / 1e6 / threads, raysPerSecond / 1e6 / threads,
-              raysPerSecond / 1e6 / threads);
+  const double perCore = 1e-6 / threads;
+  figure("rays per second per core", "Mrays/s", raysPerSecond[1] * perCore, raysPerSecond[0] * perCore,
+         raysPerSecond[2] * perCore);
+  const double plain = tracer.primaryRayRate(list, 0, width, height, 8);
+  figure("plain Embree casting of each pixel's centre ray (closest hit) per second per core", "Mrays/s",
+         plain * perCore, plain * perCore, plain * perCore);
+  if (!replay) return 0;
+  // The same rays again through Embree alone: one more frame recorded.
+  RayLog log;
+  tracer.recordRays(&log);
+  tracer.render(list, 0, width, height, 3, frame);
+  tracer.recordRays(nullptr);
+  for (bool streams : {false, true}) {
+    std::vector<double> rates;
+    for (int run = 0; run < 5; ++run) rates.push_back(tracer.replayRate(list, log, streams, 1));
+    std::sort(rates.begin(), rates.end());
+    const std::string how =
+        streams ? "as ray streams (camera rays coherent)" : "one rtcIntersect1/rtcOccluded1 call a ray";
+    figure("plain Embree casting of the tracer's own rays per second per core, " + how, "Mrays/s", rates[2] * perCore,
+           rates[0] * perCore, rates[4] * perCore);
+    figure("the tracer's rays per second as a share of plain Embree casting of the same rays, " + how, "%",
+           100 * raysPerSecond[1] / rates[2], 100 * raysPerSecond[0] / rates[2], 100 * raysPerSecond[2] / rates[2]);
+  }
   return 0;
 }

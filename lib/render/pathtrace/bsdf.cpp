@@ -90,14 +90,38 @@ PbrBsdf::PbrBsdf(const PbrMaterial& material) {
   alpha_ = std::max(roughness * roughness, kMinAlpha);
 }
 
-BsdfLobes PbrBsdf::evalLobes(const Vec3f& wo, const Vec3f& wi) const {
-  if (wo.z() <= kMinCos || wi.z() <= kMinCos) return {Vec3f::Zero(), Vec3f::Zero()};
+PbrBsdf::View PbrBsdf::view(const Vec3f& wo) const {
+  View v;
+  v.wo = wo;
+  v.above = wo.z() > kMinCos;
+  if (v.above) v.lambdaWo = smithLambda(wo, alpha_);
+  v.specularProbability = specularProbability(wo);
+  return v;
+}
+
+BsdfLobes PbrBsdf::evalLobes(const View& view, const Vec3f& wi, float& pdf) const {
+  pdf = 0.0f;
+  if (!view.above || wi.z() <= kMinCos) return {Vec3f::Zero(), Vec3f::Zero()};
+  const Vec3f& wo = view.wo;
   const Vec3f diffuse = diffuseColor_ * (wi.z() / kPi);
   // f = F D G2 / (4 cos θo cos θi); times cos θi.
   const Vec3f h = (wo + wi).normalized();
-  const float g2 = 1.0f / (1.0f + smithLambda(wo, alpha_) + smithLambda(wi, alpha_));
-  const Vec3f specular = schlickFresnel(f0_, f90_, wo.dot(h)) * (ggxDistribution(h, alpha_) * g2 / (4.0f * wo.z()));
+  const float d = ggxDistribution(h, alpha_);
+  const float g2 = 1.0f / (1.0f + view.lambdaWo + smithLambda(wi, alpha_));
+  const Vec3f specular = schlickFresnel(f0_, f90_, wo.dot(h)) * (d * g2 / (4.0f * wo.z()));
+  // The density: visible normals, D_wo(h) = G1(wo) (wo.h) D(h) / cos θo;
+  // reflecting about h divides by 4 (wo.h), which cancels.
+  const float g1 = 1.0f / (1.0f + view.lambdaWo);
+  const float specularPdf = g1 * d / (4.0f * wo.z());
+  const float diffusePdf = wi.z() / kPi;
+  const float p = view.specularProbability;
+  pdf = p * specularPdf + (1.0f - p) * diffusePdf;
   return {diffuse, specular};
+}
+
+BsdfLobes PbrBsdf::evalLobes(const Vec3f& wo, const Vec3f& wi) const {
+  float pdf;
+  return evalLobes(view(wo), wi, pdf);
 }
 
 Vec3f PbrBsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
@@ -106,20 +130,15 @@ Vec3f PbrBsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
 }
 
 float PbrBsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
-  if (wo.z() <= kMinCos || wi.z() <= kMinCos) return 0.0f;
-  // Visible normals: D_wo(h) = G1(wo) (wo.h) D(h) / cos θo; reflecting
-  // about h divides by 4 (wo.h), which cancels.
-  const Vec3f h = (wo + wi).normalized();
-  const float g1 = 1.0f / (1.0f + smithLambda(wo, alpha_));
-  const float specularPdf = g1 * ggxDistribution(h, alpha_) / (4.0f * wo.z());
-  const float diffusePdf = wi.z() / kPi;
-  const float p = specularProbability(wo);
-  return p * specularPdf + (1.0f - p) * diffusePdf;
+  float pdf;
+  evalLobes(view(wo), wi, pdf);
+  return pdf;
 }
 
-std::optional<BsdfSample> PbrBsdf::sample(const Vec3f& wo, const Vec2f& u, float uLobe) const {
-  if (wo.z() <= kMinCos) return std::nullopt;
-  const bool specular = uLobe < specularProbability(wo);
+std::optional<BsdfSample> PbrBsdf::sample(const View& view, const Vec2f& u, float uLobe, BsdfLobes& lobes) const {
+  if (!view.above) return std::nullopt;
+  const Vec3f& wo = view.wo;
+  const bool specular = uLobe < view.specularProbability;
   Vec3f wi;
   if (specular) {
     const Vec3f h = sampleVisibleNormal(wo, alpha_, u);
@@ -130,9 +149,15 @@ std::optional<BsdfSample> PbrBsdf::sample(const Vec3f& wo, const Vec2f& u, float
   // The weight divides by the density of both lobes together (one-sample
   // MIS), which is lower in variance than the picked lobe's alone and is
   // what pdf() returns for the integrator's own MIS.
-  const float density = pdf(wo, wi);
+  float density;
+  lobes = evalLobes(view, wi, density);
   if (!(density > 0.0f) || !std::isfinite(density)) return std::nullopt;
-  return BsdfSample{wi, eval(wo, wi) / density, density, specular};
+  return BsdfSample{wi, (lobes.diffuse + lobes.specular) / density, density, specular};
+}
+
+std::optional<BsdfSample> PbrBsdf::sample(const Vec3f& wo, const Vec2f& u, float uLobe) const {
+  BsdfLobes lobes;
+  return sample(view(wo), u, uLobe, lobes);
 }
 
 float PbrBsdf::specularProbability(const Vec3f& wo) const {

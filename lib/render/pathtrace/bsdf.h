@@ -78,6 +78,21 @@ class PbrBsdf {
   // against the diffuse lobe's albedo estimate, by luminance.
   float specularProbability(const Vec3f& wo) const;
 
+  // The path tracer asks one vertex's BSDF for several wi seen from the
+  // same wo: a View holds what depends on wo alone, worked out once, and
+  // these give exactly the numbers of the calls above.
+  struct View {
+    Vec3f wo;
+    bool above = false;  // wo above the surface: anything reflected at all
+    float lambdaWo = 0;  // Smith's Lambda at wo
+    float specularProbability = 0;
+  };
+  View view(const Vec3f& wo) const;
+  // evalLobes(wo, wi), and pdf(wo, wi) into `pdf`.
+  BsdfLobes evalLobes(const View& view, const Vec3f& wi, float& pdf) const;
+  // sample(wo, u, uLobe), and the sample's evalLobes into `lobes`.
+  std::optional<BsdfSample> sample(const View& view, const Vec2f& u, float uLobe, BsdfLobes& lobes) const;
+
  private:
   Vec3f diffuseColor_;  // (1 - metallic) baseColor
   Vec3f f0_;

@@ -231,6 +231,51 @@ bool EmbreeScene::occluded(const PtRay& ray, const CutOutTest* cutOuts) const {
   return r.tfar < 0.0f;  // Embree sets -inf on a hit
 }
 
+namespace {
+// Rays per rtcIntersect1M / rtcOccluded1M call: their records stay on the
+// stack (about 6 KB), and Embree's stream code forms its packets within one
+// call.
+constexpr size_t kStreamChunk = 64;
+}  // namespace
+
+void EmbreeScene::intersectMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts,
+                                SurfaceHit* hits, uint8_t* found) const {
+  FilterContext context;
+  rtcInitIntersectContext(&context.base);
+  context.base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.cutOuts = cutOuts;
+  RTCRayHit records[kStreamChunk];
+  for (size_t first = 0; first < count; first += kStreamChunk) {
+    const size_t n = std::min(kStreamChunk, count - first);
+    for (size_t i = 0; i < n; ++i) {
+      initRay(rays[first + i], records[i].ray);
+      records[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      records[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(impl_->top, &context.base, records, unsigned(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      const RTCRayHit& r = records[i];
+      found[first + i] = r.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (found[first + i]) hits[first + i] = SurfaceHit{r.hit.instID[0], r.hit.primID, r.hit.u, r.hit.v, r.ray.tfar};
+    }
+  }
+}
+
+void EmbreeScene::occludedMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts,
+                               uint8_t* occluded) const {
+  FilterContext context;
+  rtcInitIntersectContext(&context.base);
+  context.base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.cutOuts = cutOuts;
+  RTCRay records[kStreamChunk];
+  for (size_t first = 0; first < count; first += kStreamChunk) {
+    const size_t n = std::min(kStreamChunk, count - first);
+    for (size_t i = 0; i < n; ++i) initRay(rays[first + i], records[i]);
+    rtcOccluded1M(impl_->top, &context.base, records, unsigned(n), sizeof(RTCRay));
+    for (size_t i = 0; i < n; ++i) occluded[first + i] = records[i].tfar < 0.0f;
+  }
+}
+
 SurfaceGeometry EmbreeScene::geometry(const SurfaceHit& hit) const {
   const Instance& in = instances_[hit.instance];
   const Mesh& mesh = *meshes_[in.mesh];

@@ -98,6 +98,15 @@ class EmbreeScene {
   bool intersect(const PtRay& ray, const CutOutTest* cutOuts, SurfaceHit& hit) const;
   // Whether anything lies in (tMin, tMax).
   bool occluded(const PtRay& ray, const CutOutTest* cutOuts) const;
+  // The same for `count` rays at once, through Embree's ray streams
+  // (rtcIntersect1M / rtcOccluded1M): found[i] (occluded[i]) is 1 or 0, as
+  // the one-ray calls would return. `coherent` tells Embree the rays start
+  // close together and point alike (a tile's camera rays), so it traces
+  // them as packets; otherwise it traces them one by one without the
+  // per-call overhead.
+  void intersectMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts, SurfaceHit* hits,
+                     uint8_t* found) const;
+  void occludedMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts, uint8_t* occluded) const;
   SurfaceGeometry geometry(const SurfaceHit& hit) const;
 
  private:

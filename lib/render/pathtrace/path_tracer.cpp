@@ -1,6 +1,7 @@
 #include "render/pathtrace/path_tracer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -159,17 +160,18 @@ namespace {
 
 struct TraceCounters {
   uint64_t rays = 0, cameraRays = 0, dropped = 0;
+  std::vector<TracedRay>* log = nullptr;  // benchmarks only
+  void record(const PtRay& ray, TracedRayKind kind) {
+    if (log) log->push_back(TracedRay{ray, kind});
+  }
 };
 
-// One path's radiance: pbrt-v4's PathIntegrator::Li with this renderer's
-// lights and surfaces. Each vertex draws its numbers in a fixed order, used
-// or not (light pick, light direction, BSDF lobe, BSDF direction,
-// roulette), after the camera's jitter, so a sample's slots mean the same
-// on every path.
-Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSampler& sampler, TraceCounters& counters) {
-  const EmbreeScene& scene = *frame.scene;
-  const CutOutTest* cutOuts = frame.cutOuts();
-  const PtLights& lights = frame.lights;
+}  // namespace
+
+// One path of a wave (a tile's paths for one sample index, traced
+// together) between two Embree calls.
+struct PtWavePath {
+  PtRay ray;
   Vec3f radiance = Vec3f::Zero();
   Vec3f beta = Vec3f::Ones();  // the path's throughput
   // The previous vertex, for the MIS weight of light that a BSDF sample finds.
@@ -178,93 +180,180 @@ Vec3f tracePath(const PtFrameData& frame, int maxBounces, PtRay ray, PixelSample
   // Its BSDF's lobes along the sampled direction, kept only where a light
   // scales its diffuse or specular response.
   BsdfLobes previousLobes{Vec3f::Zero(), Vec3f::Zero()};
-  for (int depth = 0;; ++depth) {
-    SurfaceHit hit;
-    const bool onSurface = scene.intersect(ray, cutOuts, hit);
-    ++counters.rays;
-    // A light shape in front of the surface: its emission, and the path ends.
-    // Camera rays pass through light shapes: the rasterizer, the labels and
-    // Blender (whose lamps are invisible to the camera) do not show them
-    // either; reflections and the light they cast do.
-    PtRay toLights = ray;
-    if (onSurface) toLights.tMax = hit.t;
-    LightHit lightHit;
-    if (depth > 0 && lights.intersect(toLights, lightHit)) {
-      const float weight =
-          powerHeuristic(bsdfPdf, lights.pdf(lightHit.light, previousPoint, previousNormal, ray.direction));
-      Vec3f emitted = lightHit.radiance;
-      if (lights.anyLobeMultiplier()) emitted = emitted.cwiseProduct(lights.responseScale(lightHit.light, previousLobes));
-      radiance += beta.cwiseProduct(emitted) * weight;
-      break;
-    }
-    if (!onSurface) {
-      // Camera rays (depth 0) see the sky unweighted.
-      const float pdf = depth == 0 ? 0.0f : bsdfPdf;
-      const BsdfLobes* lobes = depth > 0 && lights.anyLobeMultiplier() ? &previousLobes : nullptr;
-      radiance += beta.cwiseProduct(lights.escaped(previousPoint, previousNormal, ray.direction, pdf, lobes));
-      break;
-    }
-    if (depth == maxBounces) break;
-    const float uPick = sampler.next1D();
-    const Vec2f uLight = sampler.next2D();
-    const float uLobe = sampler.next1D();
-    const Vec2f uBsdf = sampler.next2D();
-    const float uRoulette = sampler.next1D();
 
-    const SurfaceGeometry g = scene.geometry(hit);
-    const Vec3f wo = -ray.direction;
-    const ShadedSurface surface = shadeSurface(frame.material(hit.instance, g.part), g, wo);
-    // The geometric normal on the viewer's side: reflected light must stay
-    // on this side (pbrt-v3's test; a shading normal alone would let light
-    // through the surface).
-    const Vec3f side = g.geometricNormal.dot(wo) < 0.0f ? Vec3f(-g.geometricNormal) : g.geometricNormal;
-    const ShadingFrame shading = ShadingFrame::fromNormal(surface.normal);
-    const PbrBsdf bsdf(surface.material);
-    const Vec3f woLocal = shading.toLocal(wo);
-    const Vec3f origin = offsetOrigin(g.position, side);
-
-    // Next-event estimation: one light, one direction, one shadow ray.
-    LightSample light;
-    if (lights.sample(g.position, surface.normal, uPick, uLight, light) && light.direction.dot(side) > 0.0f) {
-      const Vec3f wiLocal = shading.toLocal(light.direction);
-      const Vec3f f = lights.response(light.light, bsdf.evalLobes(woLocal, wiLocal));
-      if (f.maxCoeff() > 0.0f) {
-        const PtRay shadow{origin, light.direction, 0.0f,
-                           std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)};
-        ++counters.rays;
-        if (!scene.occluded(shadow, cutOuts) && !lights.blocks(shadow, light.light)) {
-          const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdf.pdf(woLocal, wiLocal));
-          radiance += beta.cwiseProduct(f).cwiseProduct(light.radiance) * (weight / light.pdf);
-        }
-      }
-    }
-
-    // The BSDF's direction continues the path.
-    const std::optional<BsdfSample> next = bsdf.sample(woLocal, uBsdf, uLobe);
-    if (!next) break;
-    const Vec3f wi = shading.toWorld(next->wi).normalized();
-    if (!(wi.dot(side) > 0.0f)) break;
-    beta = beta.cwiseProduct(next->weight);
-    bsdfPdf = next->pdf;
-    previousPoint = g.position;
-    previousNormal = surface.normal;
-    if (lights.anyLobeMultiplier()) previousLobes = bsdf.evalLobes(woLocal, next->wi);
-    if (depth >= kRouletteDepth) {
-      // pbrt-v4: continue with the probability of the throughput's largest
-      // component (when below 1), and weigh the survivors up.
-      const float q = std::max(0.0f, 1.0f - beta.maxCoeff());
-      if (uRoulette < q) break;
-      beta /= 1.0f - q;
-    }
-    ray = PtRay{origin, wi, 0.0f, kInf};
+  void start(const PtRay& cameraRay) {
+    ray = cameraRay;
+    radiance.setZero();
+    beta.setOnes();
+    bsdfPdf = 0.0f;
+    previousPoint.setZero();
+    previousNormal.setZero();
+    previousLobes = BsdfLobes{Vec3f::Zero(), Vec3f::Zero()};
   }
-  return radiance;
+};
+
+// Next-event estimation's light at a vertex, waiting for its shadow ray.
+struct PtPendingLight {
+  Vec3f contribution;
+  uint32_t path;
+  int light;
+};
+
+// A thread's wave buffers, reused tile after tile.
+struct PtWaveBuffers {
+  std::vector<PixelSampler> samplers;       // the tile's pixels, row by row
+  std::vector<std::array<double, 4>> sums;  // per pixel: the radiance's RGB and luminance^2 over its samples
+  std::vector<PtWavePath> paths;            // per pixel: its path of the sample being traced
+  std::vector<uint32_t> active, next;       // the paths still going, in pixel order
+  std::vector<PtRay> rays;                  // the active paths' rays, for one Embree stream
+  std::vector<SurfaceHit> hits;
+  std::vector<uint8_t> found;
+  std::vector<PtRay> shadowRays;
+  std::vector<PtPendingLight> pending;  // one per shadow ray
+  std::vector<uint8_t> occluded;
+};
+
+namespace {
+
+// One vertex of a path whose ray has been traced (`hit`: null where it left
+// the scene): pbrt-v4's PathIntegrator::Li's loop body with this renderer's
+// lights and surfaces. Light that the ray finds goes into the radiance;
+// next-event estimation queues one shadow ray and what it adds when
+// unblocked; the BSDF's direction becomes the path's next ray. False when
+// the path ends here. Each vertex draws its numbers in a fixed order, used
+// or not (light pick, light direction, BSDF lobe, BSDF direction,
+// roulette), after the camera's jitter, so a sample's slots mean the same
+// on every path.
+bool shadeVertex(const PtFrameData& frame, int maxBounces, int depth, PtWavePath& path, uint32_t pathIndex,
+                 const SurfaceHit* hit, PixelSampler& sampler, PtWaveBuffers& wave) {
+  const PtLights& lights = frame.lights;
+  const PtRay& ray = path.ray;
+  // A light shape in front of the surface: its emission, and the path ends.
+  // Camera rays pass through light shapes: the rasterizer, the labels and
+  // Blender (whose lamps are invisible to the camera) do not show them
+  // either; reflections and the light they cast do.
+  if (depth > 0) {
+    PtRay toLights = ray;
+    if (hit) toLights.tMax = hit->t;
+    LightHit lightHit;
+    if (lights.intersect(toLights, lightHit)) {
+      const float lightPdf = lights.pdf(lightHit.light, path.previousPoint, path.previousNormal, ray.direction);
+      const float weight = powerHeuristic(path.bsdfPdf, lightPdf);
+      Vec3f emitted = lightHit.radiance;
+      if (lights.anyLobeMultiplier())
+        emitted = emitted.cwiseProduct(lights.responseScale(lightHit.light, path.previousLobes));
+      path.radiance += path.beta.cwiseProduct(emitted) * weight;
+      return false;
+    }
+  }
+  if (!hit) {
+    // Camera rays (depth 0) see the sky unweighted.
+    const float pdf = depth == 0 ? 0.0f : path.bsdfPdf;
+    const BsdfLobes* lobes = depth > 0 && lights.anyLobeMultiplier() ? &path.previousLobes : nullptr;
+    path.radiance +=
+        path.beta.cwiseProduct(lights.escaped(path.previousPoint, path.previousNormal, ray.direction, pdf, lobes));
+    return false;
+  }
+  if (depth == maxBounces) return false;
+  const float uPick = sampler.next1D();
+  const Vec2f uLight = sampler.next2D();
+  const float uLobe = sampler.next1D();
+  const Vec2f uBsdf = sampler.next2D();
+  const float uRoulette = sampler.next1D();
+
+  const SurfaceGeometry g = frame.scene->geometry(*hit);
+  const Vec3f wo = -ray.direction;
+  const ShadedSurface surface = shadeSurface(frame.material(hit->instance, g.part), g, wo);
+  // The geometric normal on the viewer's side: reflected light must stay
+  // on this side (pbrt-v3's test; a shading normal alone would let light
+  // through the surface).
+  const Vec3f side = g.geometricNormal.dot(wo) < 0.0f ? Vec3f(-g.geometricNormal) : g.geometricNormal;
+  const ShadingFrame shading = ShadingFrame::fromNormal(surface.normal);
+  const PbrBsdf bsdf(surface.material);
+  const PbrBsdf::View view = bsdf.view(shading.toLocal(wo));
+  const Vec3f origin = offsetOrigin(g.position, side);
+
+  // Next-event estimation: one light, one direction, one shadow ray.
+  LightSample light;
+  if (lights.sample(g.position, surface.normal, uPick, uLight, light) && light.direction.dot(side) > 0.0f) {
+    const Vec3f wiLocal = shading.toLocal(light.direction);
+    float bsdfPdf;
+    const Vec3f f = lights.response(light.light, bsdf.evalLobes(view, wiLocal, bsdfPdf));
+    if (f.maxCoeff() > 0.0f) {
+      wave.shadowRays.push_back(PtRay{origin, light.direction, 0.0f,
+                                      std::isinf(light.distance) ? kInf : light.distance * (1.0f - 1e-4f)});
+      const float weight = light.delta ? 1.0f : powerHeuristic(light.pdf, bsdfPdf);
+      wave.pending.push_back(
+          PtPendingLight{path.beta.cwiseProduct(f).cwiseProduct(light.radiance) * (weight / light.pdf), pathIndex,
+                       light.light});
+    }
+  }
+
+  // The BSDF's direction continues the path.
+  BsdfLobes sampledLobes;
+  const std::optional<BsdfSample> next = bsdf.sample(view, uBsdf, uLobe, sampledLobes);
+  if (!next) return false;
+  const Vec3f wi = shading.toWorld(next->wi).normalized();
+  if (!(wi.dot(side) > 0.0f)) return false;
+  path.beta = path.beta.cwiseProduct(next->weight);
+  path.bsdfPdf = next->pdf;
+  path.previousPoint = g.position;
+  path.previousNormal = surface.normal;
+  if (lights.anyLobeMultiplier()) path.previousLobes = sampledLobes;
+  if (depth >= kRouletteDepth) {
+    // pbrt-v4: continue with the probability of the throughput's largest
+    // component (when below 1), and weigh the survivors up.
+    const float q = std::max(0.0f, 1.0f - path.beta.maxCoeff());
+    if (uRoulette < q) return false;
+    path.beta /= 1.0f - q;
+  }
+  path.ray = PtRay{origin, wi, 0.0f, kInf};
+  return true;
 }
 
-// The label planes of one pixel, from the ray through its centre.
-void traceLabels(const PtFrameData& frame, const PtRay& ray, const Vec3f& eye, size_t pixel, PathTracedFrame& out) {
-  SurfaceHit hit;
-  if (!frame.scene->intersect(ray, frame.cutOuts(), hit)) return;
+// Traces one sample of each of the wave's paths (set up with their camera
+// rays, all active) to its end: vertex by vertex, each depth's rays through
+// one Embree stream (camera rays as coherent packets) and its shadow rays
+// through another. A path's light is summed in the order the vertices find
+// it, as a recursive tracer would.
+void traceWave(const PtFrameData& frame, int maxBounces, PtWaveBuffers& wave, TraceCounters& counters) {
+  const EmbreeScene& scene = *frame.scene;
+  const CutOutTest* cutOuts = frame.cutOuts();
+  for (int depth = 0; !wave.active.empty(); ++depth) {
+    const size_t count = wave.active.size();
+    wave.rays.resize(count);
+    wave.hits.resize(count);
+    wave.found.resize(count);
+    for (size_t k = 0; k < count; ++k) wave.rays[k] = wave.paths[wave.active[k]].ray;
+    scene.intersectMany(wave.rays.data(), count, depth == 0, cutOuts, wave.hits.data(), wave.found.data());
+    counters.rays += count;
+    for (const PtRay& r : wave.rays) counters.record(r, depth == 0 ? TracedRayKind::Camera : TracedRayKind::Bounce);
+    wave.shadowRays.clear();
+    wave.pending.clear();
+    wave.next.clear();
+    for (size_t k = 0; k < count; ++k) {
+      const uint32_t p = wave.active[k];
+      if (shadeVertex(frame, maxBounces, depth, wave.paths[p], p, wave.found[k] ? &wave.hits[k] : nullptr,
+                      wave.samplers[p], wave))
+        wave.next.push_back(p);
+    }
+    const size_t shadows = wave.shadowRays.size();
+    if (shadows > 0) {
+      wave.occluded.resize(shadows);
+      scene.occludedMany(wave.shadowRays.data(), shadows, false, cutOuts, wave.occluded.data());
+      counters.rays += shadows;
+      for (const PtRay& r : wave.shadowRays) counters.record(r, TracedRayKind::Shadow);
+      for (size_t j = 0; j < shadows; ++j)
+        if (!wave.occluded[j] && !frame.lights.blocks(wave.shadowRays[j], wave.pending[j].light))
+          wave.paths[wave.pending[j].path].radiance += wave.pending[j].contribution;
+    }
+    std::swap(wave.active, wave.next);
+  }
+}
+
+// The label planes of one pixel, from the hit of the ray through its centre.
+void writeLabels(const PtFrameData& frame, const PtRay& ray, const SurfaceHit& hit, const Vec3f& eye, size_t pixel,
+                 PathTracedFrame& out) {
   const SurfaceGeometry g = frame.scene->geometry(hit);
   const ShadedSurface surface = shadeSurface(frame.material(hit.instance, g.part), g, -ray.direction);
   for (int c = 0; c < 3; ++c) {
@@ -327,36 +416,71 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
   const int tilesX = (width + kTileSize - 1) / kTileSize, tilesY = (height + kTileSize - 1) / kTileSize;
   const int threads = std::min(settings_.threads, tilesX * tilesY);
   std::vector<TraceCounters> counters(static_cast<size_t>(threads));
+  if (rayLog_) {
+    rayLog_->perThread.assign(size_t(threads), {});
+    for (int t = 0; t < threads; ++t) counters[size_t(t)].log = &rayLog_->perThread[size_t(t)];
+  }
   const auto traceStart = std::chrono::steady_clock::now();
+  while (waves_.size() < size_t(threads)) waves_.push_back(std::make_unique<PtWaveBuffers>());
   forEachTile(tilesX * tilesY, threads, [&](int thread, int tile) {
     TraceCounters& count = counters[size_t(thread)];
+    PtWaveBuffers& wave = *waves_[size_t(thread)];
     const int x0 = (tile % tilesX) * kTileSize, y0 = (tile / tilesX) * kTileSize;
-    for (int y = y0; y < std::min(y0 + kTileSize, height); ++y)
-      for (int x = x0; x < std::min(x0 + kTileSize, width); ++x) {
-        const size_t pixel = size_t(y) * size_t(width) + size_t(x);
-        PixelSampler sampler(frameSeed, uint32_t(x), uint32_t(y));
-        double sum[3] = {0, 0, 0}, luminance2 = 0;
-        for (int s = 0; s < settings_.samples; ++s) {
-          sampler.startSample(uint32_t(s));
-          const Vec2f jitter = sampler.next2D();
-          const Vec3f L = tracePath(frame, settings_.maxBounces, camera.ray(x + jitter.x(), y + jitter.y()), sampler,
-                                    count);
-          if (!L.allFinite()) {
-            ++count.dropped;
-            continue;
-          }
-          for (int c = 0; c < 3; ++c) sum[c] += L[c];
-          const double l = 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
-          luminance2 += l * l;
-        }
-        const double n = settings_.samples;
-        for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[c] / n);
-        const double mean = (0.2126 * sum[0] + 0.7152 * sum[1] + 0.0722 * sum[2]) / n;
-        out.variance[pixel] = n > 1 ? float(std::max(0.0, luminance2 / n - mean * mean) / (n - 1)) : 0.0f;
-        traceLabels(frame, camera.ray(x + 0.5, y + 0.5), eye, pixel, out);
-        count.cameraRays += uint64_t(settings_.samples) + 1;
-        ++count.rays;
+    const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
+    const int tileWidth = x1 - x0;
+    const size_t n = size_t(tileWidth) * size_t(y1 - y0);
+    auto pixelOf = [&](size_t i) {
+      return size_t(y0 + int(i) / tileWidth) * size_t(width) + size_t(x0 + int(i) % tileWidth);
+    };
+    wave.samplers.clear();
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) wave.samplers.emplace_back(frameSeed, uint32_t(x), uint32_t(y));
+    wave.sums.assign(n, {0.0, 0.0, 0.0, 0.0});
+    wave.paths.resize(n);
+    // Sample by sample: a pixel's samples are summed in their order.
+    for (int s = 0; s < settings_.samples; ++s) {
+      wave.active.clear();
+      for (size_t i = 0; i < n; ++i) {
+        PixelSampler& sampler = wave.samplers[i];
+        sampler.startSample(uint32_t(s));
+        const Vec2f jitter = sampler.next2D();
+        wave.paths[i].start(camera.ray(x0 + int(i) % tileWidth + jitter.x(), y0 + int(i) / tileWidth + jitter.y()));
+        wave.active.push_back(uint32_t(i));
       }
+      traceWave(frame, settings_.maxBounces, wave, count);
+      for (size_t i = 0; i < n; ++i) {
+        const Vec3f& L = wave.paths[i].radiance;
+        if (!L.allFinite()) {
+          ++count.dropped;
+          continue;
+        }
+        std::array<double, 4>& sum = wave.sums[i];
+        for (int c = 0; c < 3; ++c) sum[size_t(c)] += L[c];
+        const double l = 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
+        sum[3] += l * l;
+      }
+    }
+    const double samples = settings_.samples;
+    for (size_t i = 0; i < n; ++i) {
+      const size_t pixel = pixelOf(i);
+      const std::array<double, 4>& sum = wave.sums[i];
+      for (int c = 0; c < 3; ++c) out.radiance[3 * pixel + size_t(c)] = float(sum[size_t(c)] / samples);
+      const double mean = (0.2126 * sum[0] + 0.7152 * sum[1] + 0.0722 * sum[2]) / samples;
+      out.variance[pixel] = samples > 1 ? float(std::max(0.0, sum[3] / samples - mean * mean) / (samples - 1)) : 0.0f;
+    }
+    // The labels: every pixel's centre ray, one coherent stream.
+    wave.rays.resize(n);
+    wave.hits.resize(n);
+    wave.found.resize(n);
+    for (size_t i = 0; i < n; ++i)
+      wave.rays[i] = camera.ray(x0 + int(i) % tileWidth + 0.5, y0 + int(i) / tileWidth + 0.5);
+    frame.scene->intersectMany(wave.rays.data(), n, true, frame.cutOuts(), wave.hits.data(), wave.found.data());
+    for (size_t i = 0; i < n; ++i) {
+      count.record(wave.rays[i], TracedRayKind::Camera);
+      if (wave.found[i]) writeLabels(frame, wave.rays[i], wave.hits[i], eye, pixelOf(i), out);
+    }
+    count.cameraRays += n * (uint64_t(settings_.samples) + 1);
+    count.rays += n;
   });
   const auto traceEnd = std::chrono::steady_clock::now();
   stats_ = PathTraceStats{};
@@ -394,6 +518,66 @@ double PathTracer::primaryRayRate(const RenderList& list, size_t cameraIndex, in
   for (uint64_t h : hits) total += h;
   (void)total;
   return double(std::max(repeats, 1)) * double(width) * double(height) / seconds;
+}
+
+double PathTracer::replayRate(const RenderList& list, const RayLog& log, bool streams, int repeats) {
+  PtFrameData frame;
+  prepare(list, frame);
+  const EmbreeScene& scene = *frame.scene;
+  const CutOutTest* cutOuts = frame.cutOuts();
+  // Streams: each thread's rays in chunks of 1,024, each chunk's rays
+  // grouped by kind (camera, bounce, shadow), as a wavefront tracer would
+  // cast them; arranged before the clock starts.
+  constexpr size_t kChunk = 1024;
+  struct Run {
+    size_t first, count;
+    TracedRayKind kind;
+  };
+  const size_t threads = log.perThread.size();
+  std::vector<std::vector<PtRay>> rays(threads);
+  std::vector<std::vector<Run>> runs(threads);
+  size_t total = 0;
+  for (size_t t = 0; t < threads; ++t) {
+    const std::vector<TracedRay>& in = log.perThread[t];
+    total += in.size();
+    for (size_t first = 0; first < in.size(); first += kChunk) {
+      const size_t end = std::min(in.size(), first + kChunk);
+      for (TracedRayKind kind : {TracedRayKind::Camera, TracedRayKind::Bounce, TracedRayKind::Shadow}) {
+        const size_t start = rays[t].size();
+        for (size_t i = first; i < end; ++i)
+          if (in[i].kind == kind || !streams) rays[t].push_back(in[i].ray);
+        if (!streams) {
+          for (size_t i = first; i < end; ++i) runs[t].push_back(Run{start + (i - first), 1, in[i].kind});
+          break;
+        }
+        if (rays[t].size() > start) runs[t].push_back(Run{start, rays[t].size() - start, kind});
+      }
+    }
+  }
+  std::vector<std::vector<SurfaceHit>> hits(threads, std::vector<SurfaceHit>(kChunk));
+  std::vector<std::vector<uint8_t>> found(threads, std::vector<uint8_t>(kChunk));
+  std::vector<uint64_t> hitCount(threads, 0);  // keeps the casting from being optimised away
+  const auto start = std::chrono::steady_clock::now();
+  for (int r = 0; r < std::max(repeats, 1); ++r)
+    forEachTile(int(threads), int(threads), [&](int, int t) {
+      const std::vector<PtRay>& in = rays[size_t(t)];
+      SurfaceHit* hit = hits[size_t(t)].data();
+      uint8_t* yes = found[size_t(t)].data();
+      uint64_t& count = hitCount[size_t(t)];
+      for (const Run& run : runs[size_t(t)]) {
+        const PtRay* first = in.data() + run.first;
+        if (!streams) {
+          count += run.kind == TracedRayKind::Shadow ? scene.occluded(*first, cutOuts)
+                                                      : scene.intersect(*first, cutOuts, *hit);
+          continue;
+        }
+        if (run.kind == TracedRayKind::Shadow) scene.occludedMany(first, run.count, false, cutOuts, yes);
+        else scene.intersectMany(first, run.count, run.kind == TracedRayKind::Camera, cutOuts, hit, yes);
+        count += yes[0];
+      }
+    });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return double(std::max(repeats, 1)) * double(total) / seconds;
 }
 
 void toneMap(const PathTracedFrame& frame, float exposureScale, uint8_t* rgba) {

@@ -18,12 +18,22 @@
 // unjittered ray, so they line up with its labels exactly; light shapes do
 // not appear in them.
 //
+// Traversal: wavefront tiles. A thread takes a 16 x 16 tile and traces one
+// sample of each of its pixels together, depth by depth: the tile's live
+// paths' rays go through one Embree ray stream (camera rays as coherent
+// packets), each vertex is shaded and queues its shadow ray, and the shadow
+// rays go through another stream. Against one rtcIntersect1 call a ray this
+// saves Embree's per-call cost and lets it trace nearby rays as packets.
+//
 // Determinism: a pixel's value depends only on the scene, the settings,
-// frameSeed and the pixel (render/pathtrace/sampler.h's streams, its own
-// sum in a fixed order); tiles are handed to threads from an atomic counter,
-// but no value is ever summed across pixels or threads, so the radiance is
-// byte-identical whatever `threads` is. Embree's BVHs are built on one
-// thread (embree_scene.h).
+// frameSeed, the pixel (render/pathtrace/sampler.h's streams, its own sum
+// in sample order) and possibly the rays traced beside it in its tile's
+// streams (Embree's stream traversal does not promise a ray the hit it
+// would get alone, to the last bit): tiles are handed to
+// threads from an atomic counter, but a tile's streams are its own paths in
+// pixel order and no value is ever summed across pixels or threads, so the
+// radiance is byte-identical whatever `threads` is. Embree's BVHs are built
+// on one thread (embree_scene.h).
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -31,6 +41,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
+#include "render/pathtrace/embree_scene.h"
 #include "render/render_list.h"
 
 namespace sdg {
@@ -66,6 +77,18 @@ struct PathTraceStats {
   int threads = 0;
 };
 
+// Benchmarks: the rays a render() cast, so that Embree alone can cast the
+// very same rays again (PathTracer::replayRate).
+enum class TracedRayKind : uint8_t { Camera, Bounce, Shadow };
+struct TracedRay {
+  PtRay ray;
+  TracedRayKind kind;
+};
+struct RayLog {
+  std::vector<std::vector<TracedRay>> perThread;  // each thread's rays in the order it cast them
+};
+
+struct PtWaveBuffers;  // path_tracer.cpp: a thread's paths and ray streams, kept from frame to frame
 struct PtFrameData;  // path_tracer.cpp: what one render() reads while its threads run
 
 class PathTracer {
@@ -91,6 +114,17 @@ class PathTracer {
   // all threads). For comparison with stats(); renders nothing.
   double primaryRayRate(const RenderList& list, size_t cameraIndex, int width, int height, int repeats = 4);
 
+  // Benchmarks: while `log` is set (null: not), render() records every ray
+  // it casts into it.
+  void recordRays(RayLog* log) { rayLog_ = log; }
+  // Plain Embree ray casting of a RayLog's rays on the same frame scene (the
+  // list render() recorded it from), no shading: rays per second over all
+  // threads, each thread casting the rays it cast in the render. With
+  // `streams`, every 1,024 rays of a thread are cast by kind through
+  // EmbreeScene's streams (camera rays as coherent packets); else one
+  // rtcIntersect1 / rtcOccluded1 call per ray, as recorded.
+  double replayRate(const RenderList& list, const RayLog& log, bool streams, int repeats = 4);
+
  private:
   struct Caches;
   void prepare(const RenderList& list, PtFrameData& frame);
@@ -99,6 +133,8 @@ class PathTracer {
   PathTraceSettings settings_;
   std::unique_ptr<Caches> caches_;
   PathTraceStats stats_;
+  RayLog* rayLog_ = nullptr;
+  std::vector<std::unique_ptr<PtWaveBuffers>> waves_;  // per thread
 };
 
 // The rasterizer's tone curve (display = 1 - exp(-radiance * exposureScale), then sRGB, rounded) into RGBA8, alpha 255.

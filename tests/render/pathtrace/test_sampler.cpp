@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <vector>
 
@@ -195,4 +196,36 @@ TEST_CASE("sampler: pixels and slots are decorrelated", "[pathtrace][sampler]") 
     meanSquaredR += r * r / kPixels;
   }
   CHECK(meanSquaredR < 3.0 / 256.0);
+}
+
+TEST_CASE("sampler: the streams' numbers are pinned (the GPU tracer's GLSL port draws the same)",
+          "[pathtrace][sampler]") {
+  // An FNV-1a hash of the bits of mixed 1D and 2D draws, 60 slots a sample
+  // (beyond the sampler's cached slots), jumps in the sample index, three
+  // frame seeds. A change here changes every path-traced frame and must be
+  // made in gpu/shaders/pt_common.glsl too.
+  uint64_t hash = 0xcbf29ce484222325ull;
+  auto add = [&hash](float v) {
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int k = 0; k < 4; ++k) hash = (hash ^ ((bits >> (8 * k)) & 0xffu)) * 0x100000001b3ull;
+  };
+  for (uint64_t seed : {uint64_t{0}, uint64_t{10}, uint64_t{0xfedcba9876543210ull}})
+    for (uint32_t y = 0; y < 5; ++y)
+      for (uint32_t x = 0; x < 5; ++x) {
+        PixelSampler sampler(seed, x * 37, y * 101);
+        for (uint32_t i = 0; i < 70; ++i) {
+          sampler.startSample(i * (i % 7 == 6 ? 977u : 1u));
+          for (int slot = 0; slot < 60; ++slot) {
+            if (slot % 3 == 1) {
+              add(sampler.next1D());
+            } else {
+              const Vec2f p = sampler.next2D();
+              add(p.x());
+              add(p.y());
+            }
+          }
+        }
+      }
+  CHECK(hash == 0x635d65b5de8d53e7ull);
 }
