@@ -107,10 +107,13 @@ def metadata(name, path):
         meta["denoised"] = settings.get("denoise")
     if meta["denoised"] is None and not path.endswith(".png"):
         meta["denoised"] = "denoised" in name  # compare_with_cycles.sh's pt_N_denoised
-    if meta["samples"] is None:
-        m = re.search(r"(\d+)", name)
-        if m and not path.endswith(".png"):
-            meta["samples"] = int(m.group(1))
+    if meta["samples"] is None and not path.endswith(".png"):
+        # The last number of the name: pt_256, pt_4_denoised, gpu_h100_1024; a
+        # bare hdr_color_0000.npy is named after its folder.
+        label = os.path.basename(os.path.dirname(path)) if name.startswith("hdr_color") else name
+        numbers = re.findall(r"\d+", label)
+        if numbers:
+            meta["samples"] = int(numbers[-1])
     return meta
 
 
