@@ -11,8 +11,11 @@ set -euo pipefail
 build="${1:-build/release}"
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
+# In a git worktree .git is a file: ask git where the exclude file is.
+exclude="$(git rev-parse --git-path info/exclude)"
+mkdir -p "$(dirname "$exclude")"
 for d in .gl .devlibs .devbin; do
-  grep -qx "/$d/" .git/info/exclude 2>/dev/null || echo "/$d/" >> .git/info/exclude
+  grep -qx "/$d/" "$exclude" 2>/dev/null || echo "/$d/" >> "$exclude"
 done
 mkdir -p .gl .devlibs .devbin /tmp/amd64/partial
 apt_opts=(-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64)

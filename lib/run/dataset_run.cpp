@@ -423,7 +423,12 @@ void DatasetRun::keepFinishedFramesAfterFailure() {
 }
 
 void DatasetRun::finish() {
+  // The last product is collected here, not by a successor's
+  // renderProduct(): its read-back and colour (a whole path-traced frame)
+  // are render time too, or a one-frame run would report none of it.
+  const auto renderStart = Clock::now();
   collectPending();
+  result_.stages.render += since(renderStart);
   progress_->finish();
   GlContext& context = bringUp_->context();
   result_.renderer = context.rendererName();

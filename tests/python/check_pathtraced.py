@@ -9,10 +9,14 @@
 - --threads 1 and 3 write byte-identical datasets, and 2 shards merged equal
   one run: every pixel's samples depend only on the seed, frame and pixel;
 - --denoise changes the colour and nothing else;
-- writer.hdr_color without the path tracer is a scene error (exit 2).
+- writer.hdr_color without the path tracer is a scene error (exit 2);
+- the run summary counts the tracing as render time, the last frame's too
+  (it is collected after the frame loop): one frame at 256 samples takes
+  longer than at 1, and the difference shows in seconds.render.
 
 usage: check_pathtraced.py SDGBEHAVE SCENE    (numpy, PIL)"""
 import fnmatch
+import json
 import os
 import subprocess
 import sys
@@ -30,6 +34,13 @@ PT = ["--render-mode", "pathtraced", "--samples", "4", "--frames", "2"]
 def run(binary, scene, out, *extra):
     p = subprocess.run([binary, "run", scene, "--out", out, "--overwrite", *extra], capture_output=True, text=True)
     check(p.returncode == 0, f"run {' '.join(extra)}: exit {p.returncode}: {p.stderr.strip()[-400:]}")
+
+
+def render_and_total_seconds(binary, scene, out, samples):
+    run(binary, scene, out, "--render-mode", "pathtraced", "--samples", str(samples), "--frames", "1",
+        "--resolution", "64x48")
+    seconds = json.load(open(f"{out}/run_summary.json"))["seconds"]
+    return seconds["render"], seconds["total"]
 
 
 def labels(hashes):
@@ -76,6 +87,11 @@ def main():
                            capture_output=True, text=True)
         check(p.returncode == 2 and "hdr_color: linear radiance comes from the path tracer" in p.stderr,
               f"hdr_color with the rasterizer: exit {p.returncode}: {p.stderr.strip()[-300:]}")
+        render_1, total_1 = render_and_total_seconds(binary, scene, f"{tmp}/time1", 1)
+        render_256, total_256 = render_and_total_seconds(binary, scene, f"{tmp}/time256", 256)
+        check(total_256 - total_1 > 0 and render_256 - render_1 >= 0.5 * (total_256 - total_1),
+              f"one frame at 1 and 256 samples: seconds.render {render_1:.3f} and {render_256:.3f}, "
+              f"total {total_1:.3f} and {total_256:.3f}: the tracing is not counted as render time")
     sys.exit(finish("path-traced datasets: labels equal the rasterizer's, colour and radiance agree, deterministic"))
 
 

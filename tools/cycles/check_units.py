@@ -118,6 +118,9 @@ def light_checks(folder):
         ("RectLight .2 x .1 at d 2, tilted 45 deg: E = L A cos / d^2",
          {"type": "RectLight", "inputs:intensity": 1e5, "inputs:width": 0.2, "inputs:height": 0.1,
           "translate": [0, 0, d], "rotateX": 45.0}, 1e5 * 0.02 * math.cos(math.radians(45)) / d ** 2),
+        ("RectLight .2 x .1 at d 2, normalize: E = (L / A) A / d^2",
+         {"type": "RectLight", "inputs:intensity": 2e3, "inputs:width": 0.2, "inputs:height": 0.1,
+          "inputs:normalize": True, "translate": [0, 0, d]}, 2e3 / d ** 2),
         ("DiskLight r .1 at d 2: E = L pi r^2 / d^2",
          {"type": "DiskLight", "inputs:intensity": 1e5, "inputs:radius": 0.1, "translate": [0, 0, d]},
          1e5 * math.pi * 0.01 / d ** 2),
@@ -153,8 +156,9 @@ def path_tracer_bsdf_cos(base, roughness, cos_i):
     """f cos(theta_i) of the path tracer's PbrBsdf::eval() (render/pathtrace/bsdf.cpp), viewed head-on."""
     wo = np.array([0, 0, 1.0])
     wi = np.array([math.sin(math.acos(cos_i)), 0, cos_i])
-    transmission = lambda c: 0.96 * (1 - (1 - c) ** 5)
-    diffuse = base * transmission(wo[2]) * transmission(wi[2]) * wi[2] / math.pi
+    # The diffuse base is not darkened by the coat (as Principled's); specular_level
+    # 0.5, the default, gives F0 0.04 and F90 1.
+    diffuse = base * wi[2] / math.pi
     h = (wo + wi) / np.linalg.norm(wo + wi)
     a = max(roughness ** 2, 1e-3)
     dd = (h[0] ** 2 + h[1] ** 2) / (a * a) + h[2] ** 2

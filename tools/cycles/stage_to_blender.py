@@ -313,14 +313,35 @@ def power_and_color(rgb, factor):
     return factor * peak, [c / peak for c in rgb]
 
 
+def emitting_area(stage, p, kind):
+    """The area inputs:normalize divides the radiance by (render_list.cpp); 0: none."""
+    a = lambda name: float(stage.attr(p, name))
+    if kind == "RectLight":
+        return a("inputs:width") * a("inputs:height")
+    if kind == "DiskLight":
+        return math.pi * a("inputs:radius") ** 2
+    if kind == "SphereLight":
+        return 4 * math.pi * a("inputs:radius") ** 2
+    if kind == "CylinderLight":
+        return 2 * math.pi * a("inputs:radius") * a("inputs:length")
+    return 0.0  # a distant light's intensity is its irradiance already; a dome has no area
+
+
 def light_of(stage, p, notes):
     kind = stage.type_of(p)
     translation, rot = decompose(stage.world(p))
     L = radiance_of(stage, p)
+    # inputs:normalize: the radiance over the emitting area, as sdgbehave reads it.
+    area = emitting_area(stage, p, kind) if stage.attr(p, "inputs:normalize") else 0.0
+    if area > 0:
+        L = [c / area for c in L]
     out = {"path": p, "matrix": rows(rigid(translation, rot))}
-    for name, default in (("inputs:normalize", False), ("inputs:diffuse", 1.0), ("inputs:specular", 1.0)):
-        if stage.attr(p, name) != default:
-            notes.append(f"{p}: {name} is {stage.attr(p, name)}; sdgbehave's renderer ignores it, and so does this export")
+    # Both renderers of sdgbehave scale a light's diffuse and specular response
+    # by these; a Cycles light has no such multipliers (only on/off ray
+    # visibility), so the export leaves them out and says so.
+    for name in ("inputs:diffuse", "inputs:specular"):
+        if stage.attr(p, name) != 1.0:
+            notes.append(f"{p}: {name} is {stage.attr(p, name)}; Cycles has no such multiplier, the export ignores it")
     if kind == "DistantLight":
         # sdgbehave: the radiance value is the irradiance at normal incidence.
         # Cycles' sun strength is irradiance in W/m^2: the same number.
