@@ -76,13 +76,21 @@ uint laineKarrasPermutation(uint x, uint seed) {
 uint nestedUniformScramble(uint value, uint seed) {
   return bitfieldReverse(laineKarrasPermutation(bitfieldReverse(value), seed));
 }
+// Sobol's first two dimensions. The second's generator is Pascal's
+// triangle mod 2: by Lucas' theorem index bit k reaches result bit 31 - j
+// when j's bits are a subset of k's, so the product is the superset XOR
+// transform of the index's bits, five shift-and-xor steps, then reversed
+// (the same numbers as sampler.cpp's; a loop over the index's bits ran up
+// to 32 times here, as the scrambled index's high bits are random).
 uint sobol(uint index, int dimension) {
   if (dimension == 0) return bitfieldReverse(index);
-  uint direction = 1u << 31;
-  uint result = 0u;
-  for (; index != 0u; index >>= 1, direction ^= direction >> 1)
-    if ((index & 1u) != 0u) result ^= direction;
-  return result;
+  uint y = index;
+  y ^= (y >> 1) & 0x55555555u;
+  y ^= (y >> 2) & 0x33333333u;
+  y ^= (y >> 4) & 0x0f0f0f0fu;
+  y ^= (y >> 8) & 0x00ff00ffu;
+  y ^= (y >> 16) & 0x0000ffffu;
+  return bitfieldReverse(y);
 }
 float toUnitFloat(uint fixedPoint) { return float(fixedPoint >> 8) * (1.0 / 16777216.0); }
 
