@@ -121,8 +121,13 @@ GpuBvh GpuBvhBuilder::build(const std::vector<Eigen::AlignedBox3f>& boxes, bool 
   args.sahBlockSize = 1;
   args.minLeafSize = 1;
   args.maxLeafSize = kGpuMaxLeafSize;
+  // A triangle test costs the kernel about three node visits' worth (its
+  // 48 bytes and a division, against 112 bytes for four boxes), so the SAH
+  // is told so: leaves get fewer triangles. On an H100, the Cornell box at
+  // 1,024 spp 0.342 -> 0.303 s with 3 against 1 (the demo unchanged);
+  // leaves of at most 4 gave 0.333 s, a traversal cost of 2 0.350 s.
   args.traversalCost = 1.0f;
-  args.intersectionCost = 1.0f;
+  args.intersectionCost = 3.0f;
   args.bvh = bvh;
   args.primitives = prims.data();
   args.primitiveCount = prims.size();
