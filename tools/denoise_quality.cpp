@@ -14,12 +14,14 @@
 // - paired bias: the block error of the mean of (denoised - noisy) over the
 //   seeds. The noisy frame is unbiased, so its expectation is the
 //   denoiser's bias; pairing cancels the noise the filter leaves in place,
-//   so it resolves far below the floor above and needs no reference.
+//   so it resolves far below the floor above and needs no reference;
+// - the denoiser's time per frame on THREADS threads (ms; median, min, max).
 //   sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial]
 // SEEDS defaults to 3; REFERENCE 0 skips the reference (paired figures
 // only); `spatial` withholds the tracer's per-pixel variance (the
 // neighbourhood estimate).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -64,10 +66,13 @@ Errors errorsOf(const A& image, const B& truth, const C& scale, int width, int h
   return {blockError / total, pixelError / total};
 }
 
-void print(const std::string& what, const std::string& name, std::vector<double> v) {
+// Fractions, printed in percent; with unit "ms", as they are.
+void print(const std::string& what, const std::string& name, std::vector<double> v, const char* unit = "%") {
   std::sort(v.begin(), v.end());
-  std::printf("{\"name\": \"denoiser: %s, %s\", \"unit\": \"%%\", \"median\": %.2f, \"min\": %.2f, \"max\": %.2f}\n",
-              what.c_str(), name.c_str(), 100 * v[v.size() / 2], 100 * v.front(), 100 * v.back());
+  const double scale = std::string(unit) == "%" ? 100.0 : 1.0;
+  std::printf("{\"name\": \"denoiser: %s, %s\", \"unit\": \"%s\", \"median\": %.2f, \"min\": %.2f, \"max\": %.2f}\n",
+              what.c_str(), name.c_str(), unit, scale * v[v.size() / 2],
+              scale * v.front(), scale * v.back());
 }
 
 }  // namespace
@@ -101,13 +106,15 @@ int main(int argc, char** argv) {
   std::vector<double> noisyBlock, noisyMae, denoisedBlock, denoisedMae;  // one per seed
   PathTracedFrame frame;
   std::vector<float> denoised;
-  std::vector<double> noisySum, denoisedSum, differenceSum;
+  std::vector<double> noisySum, denoisedSum, differenceSum, milliseconds;
   for (int seed = 0; seed < seeds; ++seed) {
     tracer.render(list, 0, width, height, uint64_t(seed), frame);
     denoised.resize(frame.radiance.size());
+    const auto start = std::chrono::steady_clock::now();
     denoiser.run({frame.width, frame.height, frame.radiance.data(), frame.albedo.data(), frame.normal.data(),
                   frame.depth.data(), frame.instance.data(), spatial ? nullptr : frame.variance.data()},
                  denoised.data());
+    milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     noisySum.resize(denoised.size()), denoisedSum.resize(denoised.size()), differenceSum.resize(denoised.size());
     for (size_t i = 0; i < denoised.size(); ++i) {
       noisySum[i] += frame.radiance[i];
@@ -140,5 +147,6 @@ int main(int argc, char** argv) {
   const std::vector<double> zero(differenceSum.size(), 0.0);
   print(what, "denoised, paired block bias over " + frames,
         {errorsOf(differenceSum, zero, noisySum, width, height).block});
+  print(what, "time per frame on " + std::to_string(threads) + " threads", milliseconds, "ms");
   return 0;
 }
