@@ -33,19 +33,28 @@ float gentlerDifference(float backward, float forward) {
 
 float luminance(const float* c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
 
-// Calls visit(q, kx, ky) for each tap q = (x + kx step, y + ky step) of
-// the 5 x 5 kernel inside the image, the centre left out.
+// The 12 taps of the 5 x 5 kernel that follow the centre in reading order
+// (kx, ky); the other 12 mirror them. A pair's weight is symmetric, so it
+// is computed once, by the pixel the offset starts from.
+constexpr int kHalfTaps = 12;
+constexpr int kHalfTap[kHalfTaps][2] = {{1, 0},  {2, 0},  {-2, 1}, {-1, 1}, {0, 1}, {1, 1},
+                                        {2, 1},  {-2, 2}, {-1, 2}, {0, 2},  {1, 2}, {2, 2}};
+
+// Calls visit(q, w) for each tap q of pixel (x, y) inside the image, the
+// centre left out, w its weight from the half weights: each half tap t
+// forward (q = p + offset, p's weight t) then backward (q = p - offset, q's
+// weight t). (The GPU kernel recomputes the weights, in reading order: the
+// same sums up to rounding.)
 template <class Visit>
-void forEachTap(int x, int y, int w, int h, int step, Visit&& visit) {
-  for (int ky = -2; ky <= 2; ++ky) {
-    const int qy = y + ky * step;
-    if (qy < 0 || qy >= h) continue;
-    for (int kx = -2; kx <= 2; ++kx) {
-      const int qx = x + kx * step;
-      if (qx < 0 || qx >= w || (kx == 0 && ky == 0)) continue;
-      visit(size_t(qy) * size_t(w) + size_t(qx), kx, ky);
+void forEachTap(int x, int y, int w, int h, int step, const float* halfWeights, Visit&& visit) {
+  const size_t p = size_t(y) * size_t(w) + size_t(x);
+  for (int t = 0; t < kHalfTaps; ++t)
+    for (int side = 1; side >= -1; side -= 2) {
+      const int qx = x + side * kHalfTap[t][0] * step, qy = y + side * kHalfTap[t][1] * step;
+      if (qx < 0 || qx >= w || qy < 0 || qy >= h) continue;
+      const size_t q = size_t(qy) * size_t(w) + size_t(qx);
+      visit(q, halfWeights[kHalfTaps * (side > 0 ? p : q) + size_t(t)]);
     }
-  }
 }
 
 bool hasSurface(const DenoiseInputs& in, size_t p) {
@@ -71,6 +80,7 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
   depthGradient_.resize(2 * pixels);
   noiseVariance_.resize(pixels);
   weightTotal_.resize(pixels);
+  halfWeights_.resize(kHalfTaps * pixels);
   levels_.resize(2 * pixels);
   if (in.variance) {
     pixelVariance_.resize(pixels);
@@ -100,6 +110,8 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
       levelRows(in, pass, rowBegin, rowEnd);
       sync();
       weighRows(in, pass, rowBegin, rowEnd);
+      sync();
+      totalRows(in, pass, rowBegin, rowEnd);
       sync();
       filterRows(in, pass, target, varianceTarget, rowBegin, rowEnd);
       sync();
@@ -191,9 +203,9 @@ void Denoiser::estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowE
 
 // The edge-stopping weight of the tap from p to q (p != q, q - p = (kx,
 // ky) taps), kernel weight included; 0 for a tap that crosses an edge.
-// Symmetric: every term reads p and q alike, in an order that rounds alike,
-// so weight(p, q) == weight(q, p) bit for bit, which makes the filter
-// conserve light exactly (see filterRows).
+// Symmetric: every term reads p and q alike (and each pair's weight is
+// computed once, for both), which makes the filter conserve light exactly
+// (see filterRows).
 float Denoiser::tapWeight(const DenoiseInputs& in, const PassView& pass, size_t p, size_t q, int kx, int ky) const {
   if (in.instance && in.instance[q] != in.instance[p]) return 0.0f;
   const float* np = in.normal + 3 * p;
@@ -248,16 +260,31 @@ void Denoiser::levelRows(const DenoiseInputs& in, const PassView& pass, int rowB
   }
 }
 
-// W_p: the sum of p's tap weights, its own (the kernel's centre) included.
+// The half taps' weights of rows [rowBegin, rowEnd): 0 where the tap
+// leaves the image (or crosses an edge, or either pixel has no surface).
 void Denoiser::weighRows(const DenoiseInputs& in, const PassView& pass, int rowBegin, int rowEnd) {
   const int w = in.width, h = in.height;
   for (int y = rowBegin; y < rowEnd; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
-      if (!hasSurface(in, p)) continue;
+      for (int t = 0; t < kHalfTaps; ++t) {
+        const int kx = kHalfTap[t][0], ky = kHalfTap[t][1];
+        const int qx = x + kx * pass.step, qy = y + ky * pass.step;
+        const bool inside = qx >= 0 && qx < w && qy < h;
+        halfWeights_[kHalfTaps * p + size_t(t)] =
+            inside ? tapWeight(in, pass, p, size_t(qy) * size_t(w) + size_t(qx), kx, ky) : 0.0f;
+      }
+    }
+}
+
+// W_p: the sum of p's tap weights, its own (the kernel's centre) included.
+void Denoiser::totalRows(const DenoiseInputs& in, const PassView& pass, int rowBegin, int rowEnd) {
+  const int w = in.width, h = in.height;
+  for (int y = rowBegin; y < rowEnd; ++y)
+    for (int x = 0; x < w; ++x) {
       float total = kKernel[2] * kKernel[2];
-      forEachTap(x, y, w, h, pass.step, [&](size_t q, int kx, int ky) { total += tapWeight(in, pass, p, q, kx, ky); });
-      weightTotal_[p] = total;
+      forEachTap(x, y, w, h, pass.step, halfWeights_.data(), [&](size_t, float weight) { total += weight; });
+      weightTotal_[size_t(y) * size_t(w) + size_t(x)] = total;
     }
 }
 
@@ -285,8 +312,7 @@ void Denoiser::filterRows(const DenoiseInputs& in, const PassView& pass, float* 
       const float totalP = weightTotal_[p];
       float sum[3] = {0.0f, 0.0f, 0.0f};
       float weightSum = 0.0f, varianceSum = 0.0f;
-      forEachTap(x, y, w, h, pass.step, [&](size_t q, int kx, int ky) {
-        const float weight = tapWeight(in, pass, p, q, kx, ky);
+      forEachTap(x, y, w, h, pass.step, halfWeights_.data(), [&](size_t q, float weight) {
         if (weight == 0.0f) return;
         const float a = weight / std::max(totalP, weightTotal_[q]);
         const float* cq = pass.source + 3 * q;
