@@ -87,9 +87,14 @@ struct DenoiseSettings {
   int iterations = 3;  // 0 to 16; 3 (taps up to 8 pixels apart): 4 blur the Cornell box's light more at 4 samples
   // Colour edges stop the filter where two pixels' illumination differs by
   // more than about sigmaColor times their noise (see above).
-  float sigmaColor = 5.0f;
+  float sigmaColor = 4.0f;
   float sigmaNormal = 128.0f;
-  float sigmaDepth = 1.0f;
+  // Depth steps stop it beyond sigmaDepth times the change the pixels'
+  // depth gradients predict: 3 rather than 1, since along a floor seen at a
+  // grazing angle depth grows faster than linearly across the screen (the
+  // demo's floor: MAE 8.9 % -> 8.2 % at 4 samples, the Cornell box's bias
+  // and MAE a little lower too).
+  float sigmaDepth = 3.0f;
   // Threads filtering rows; 0: the hardware's count.
   unsigned threads = 0;
 };
