@@ -7,13 +7,13 @@
 // Smoothing Filters").
 //
 // Each iteration i convolves with the 5 x 5 B3-spline kernel whose taps are
-// 2^i pixels apart, so three iterations reach 28 pixels across for the cost
+// 2^i pixels apart, so three iterations reach 14 pixels away for the cost
 // of 3 x 25 taps. A tap's weight w_pq is the kernel's times edge-stopping
 // weights, each of them symmetric in p and q:
 // - colour: exp(-|l_p - l_q| / (sigmaColor sigma_pq + 1 % of their mean
-//   level)), l the luminance of the illumination and sigma_pq the RMS of
-//   the two pixels' noise: noise is smoothed, real differences (shadow
-//   edges) are kept;
+//   level)), l the luminance of the illumination and sigma_pq the mean of
+//   the two pixels' noise (standard deviations): noise is smoothed, real
+//   differences (shadow edges) are kept;
 // - normal: max(0, n_p . n_q)^sigmaNormal (as SVGF);
 // - depth: exp(-|z_p - z_q| / (sigmaDepth e + 1e-3 z)), e the mean of the
 //   changes that planes through p and q with their own screen-space depth
@@ -36,7 +36,7 @@
 // It needs each pixel's W_p before filtering, so an iteration has three
 // sweeps: the weights (each symmetric pair's once, kept: 12 a pixel), their
 // sums W, the filter. On the CPU that takes 0.6 x the former filter's time
-// (it computed all 25 weights per pixel); the GPU kernel recomputes them in
+// (it computed all 24 weights per pixel); the GPU kernel recomputes them in
 // two dispatches, 2.0 x its former time (0.36 ms at 512 x 512 on an H100).
 //
 // The noise: with a per-pixel variance from the tracer
