@@ -30,9 +30,11 @@ done
 # then cast again without shading, one call per ray and as ray streams), on
 # one core: the demo's stage at 256 x 256, 4 samples (about 1 M rays kept).
 "$build/tools/sdg_bench_pathtrace" "$stage/demo_stage.yaml" 256 256 4 1 replay >> "$lines"
-# The denoiser's block bias and MAE at 4 samples against 256 samples of the
-# same tracer (the Cornell box, 128 x 128, 3 seeds; docs/performance.md).
-"$build/tools/sdg_denoise_quality" scenes/examples/cornell_box.yaml 128 128 4 256 "$cores" 3 >> "$lines"
+# The denoiser's bias (the mean of 16 frames and paired), noise floor, MAE
+# and time at 4 samples against 1,024 samples of the same tracer (the
+# Cornell box at 128 x 128, the demo's stage at 256 x 256; docs/performance.md).
+"$build/tools/sdg_denoise_quality" scenes/examples/cornell_box.yaml 128 128 4 1024 "$cores" 16 >> "$lines"
+"$build/tools/sdg_denoise_quality" "$stage/demo_stage.yaml" 256 256 4 1024 "$cores" 16 >> "$lines"
 rm -rf "$stage"
 # Steady state of the demo scene as a dataset run: 600 frames at 512 x 512,
 # 5 runs per writer configuration. Steady state is the frames over the time

@@ -1,15 +1,27 @@
-// The denoiser's error against a reference of the same tracer: one frame of
-// a scene file's first camera at W x H, traced with REFERENCE samples (the
-// reference) and with SAMPLES samples, the latter with and without the
-// denoiser. Prints one JSON object per figure:
-// - bias: the error of 16 x 16-pixel block means, summed over blocks and
-//   channels, over the reference's sum (noise averages out in a block, what
-//   a filter moves across edges does not);
-// - MAE: the per-pixel absolute error, summed, over the reference's sum.
+// The denoiser's bias and error: one frame of a scene file's first camera at
+// W x H, traced SEEDS times with SAMPLES samples (seeds 0, 1, ...), each
+// frame with and without the denoiser, and once with REFERENCE samples
+// (seed 1000) as the reference. Prints one JSON object per figure, all in
+// percent of the reference's sum (of the noisy frames' mean without one):
+// - block error of one frame: the error of 16 x 16-pixel block means,
+//   summed over blocks and channels (median, min and max over the seeds).
+//   At 4 samples noise does not average out in a block (the noisy frame's
+//   own figure is its noise), so this mixes the denoiser's bias with noise;
+// - MAE: the per-pixel absolute error, summed (median over the seeds);
+// - the block error of the mean of the SEEDS frames, noisy (the
+//   measurement's noise floor: the seeds' and the reference's noise) and
+//   denoised (the denoiser's bias, on top of that floor);
+// - paired bias: the block error of the mean of (denoised - noisy) over the
+//   seeds. The noisy frame is unbiased, so its expectation is the
+//   denoiser's bias; pairing cancels the noise the filter leaves in place,
+//   so it resolves far below the floor above and needs no reference;
+// - the denoiser's time per frame on THREADS threads (ms; median, min, max).
 //   sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial]
-// SEEDS (default 3) noisy frames give the median, min and max; `spatial`
-// withholds the tracer's per-pixel variance (the neighbourhood estimate).
+// SEEDS defaults to 3; REFERENCE 0 skips the reference (paired figures
+// only); `spatial` withholds the tracer's per-pixel variance (the
+// neighbourhood estimate).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,12 +38,16 @@ using namespace sdg;
 
 namespace {
 
+constexpr int kBlock = 16;
+
+// Block and per-pixel absolute errors of `image` against `truth`, over the
+// sum of `scale` (both in the blocks that fit the image).
 struct Errors {
-  double bias = 0, mae = 0;
+  double block = 0, pixel = 0;
 };
 
-Errors errorsOf(const std::vector<float>& image, const std::vector<float>& reference, int width, int height) {
-  constexpr int kBlock = 16;
+template <class A, class B, class C>
+Errors errorsOf(const A& image, const B& truth, const C& scale, int width, int height) {
   double blockError = 0, pixelError = 0, total = 0;
   for (int by = 0; by + kBlock <= height; by += kBlock)
     for (int bx = 0; bx + kBlock <= width; bx += kBlock)
@@ -41,13 +57,22 @@ Errors errorsOf(const std::vector<float>& image, const std::vector<float>& refer
           for (int x = bx; x < bx + kBlock; ++x) {
             const size_t i = 3 * (size_t(y) * size_t(width) + size_t(x)) + size_t(c);
             a += image[i];
-            b += reference[i];
-            pixelError += std::abs(double(image[i]) - reference[i]);
+            b += truth[i];
+            pixelError += std::abs(double(image[i]) - double(truth[i]));
+            total += scale[i];
           }
         blockError += std::abs(a - b);
-        total += b;
       }
   return {blockError / total, pixelError / total};
+}
+
+// Fractions, printed in percent; with unit "ms", as they are.
+void print(const std::string& what, const std::string& name, std::vector<double> v, const char* unit = "%") {
+  std::sort(v.begin(), v.end());
+  const double scale = std::string(unit) == "%" ? 100.0 : 1.0;
+  std::printf("{\"name\": \"denoiser: %s, %s\", \"unit\": \"%s\", \"median\": %.2f, \"min\": %.2f, \"max\": %.2f}\n",
+              what.c_str(), name.c_str(), unit, scale * v[v.size() / 2],
+              scale * v.front(), scale * v.back());
 }
 
 }  // namespace
@@ -62,38 +87,66 @@ int main(int argc, char** argv) {
   const int referenceSamples = std::atoi(argv[5]), threads = std::atoi(argv[6]);
   const int seeds = argc > 7 ? std::max(1, std::atoi(argv[7])) : 3;
   const bool spatial = argc > 8 && std::string(argv[8]) == "spatial";
+  if (width < kBlock || height < kBlock || samples < 1 || referenceSamples < 0 || threads < 1) {
+    std::fprintf(stderr, "sdg_denoise_quality: WIDTH and HEIGHT at least %d, SAMPLES and THREADS at least 1\n", kBlock);
+    return 2;
+  }
   Scene scene = loadScene(file, builtinRegistry().catalog());
   const RenderList list = buildRenderList(scene.stage);
   const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
   const int bounces = int(scene.render.getUInt("max_bounces"));
   PathTracedFrame reference;
-  PathTracer(assets, PathTraceSettings{referenceSamples, bounces, threads}).render(list, 0, width, height, 1000, reference);
+  if (referenceSamples > 0)
+    PathTracer(assets, PathTraceSettings{referenceSamples, bounces, threads})
+        .render(list, 0, width, height, 1000, reference);
   PathTracer tracer(assets, PathTraceSettings{samples, bounces, threads});
   DenoiseSettings ds;
   ds.threads = unsigned(threads);
   Denoiser denoiser(ds);
-  std::vector<double> figures[4];  // bias and MAE without, then with the denoiser, one per seed
+  std::vector<double> noisyBlock, noisyMae, denoisedBlock, denoisedMae;  // one per seed
   PathTracedFrame frame;
+  std::vector<float> denoised;
+  std::vector<double> noisySum, denoisedSum, differenceSum, milliseconds;
   for (int seed = 0; seed < seeds; ++seed) {
     tracer.render(list, 0, width, height, uint64_t(seed), frame);
-    const Errors n = errorsOf(frame.radiance, reference.radiance, width, height);
+    denoised.resize(frame.radiance.size());
+    const auto start = std::chrono::steady_clock::now();
     denoiser.run({frame.width, frame.height, frame.radiance.data(), frame.albedo.data(), frame.normal.data(),
                   frame.depth.data(), frame.instance.data(), spatial ? nullptr : frame.variance.data()},
-                 frame.radiance.data());
-    const Errors d = errorsOf(frame.radiance, reference.radiance, width, height);
-    for (auto [k, v] : {std::pair{0, n.bias}, std::pair{1, n.mae}, std::pair{2, d.bias}, std::pair{3, d.mae}})
-      figures[k].push_back(100 * v);
+                 denoised.data());
+    milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    noisySum.resize(denoised.size()), denoisedSum.resize(denoised.size()), differenceSum.resize(denoised.size());
+    for (size_t i = 0; i < denoised.size(); ++i) {
+      noisySum[i] += frame.radiance[i];
+      denoisedSum[i] += denoised[i];
+      differenceSum[i] += double(denoised[i]) - double(frame.radiance[i]);
+    }
+    if (referenceSamples == 0) continue;
+    const Errors n = errorsOf(frame.radiance, reference.radiance, reference.radiance, width, height);
+    const Errors d = errorsOf(denoised, reference.radiance, reference.radiance, width, height);
+    noisyBlock.push_back(n.block), noisyMae.push_back(n.pixel);
+    denoisedBlock.push_back(d.block), denoisedMae.push_back(d.pixel);
   }
   const std::string what = file.substr(file.find_last_of('/') + 1) + " " + std::to_string(width) + "x" +
-                           std::to_string(height) + ", " + std::to_string(samples) + " spp against " +
-                           std::to_string(referenceSamples) + " spp" + (spatial ? ", spatial noise estimate" : "");
-  const char* names[4] = {"without the denoiser, block bias", "without the denoiser, MAE", "denoised, block bias",
-                          "denoised, MAE"};
-  for (int k = 0; k < 4; ++k) {
-    std::vector<double>& v = figures[k];
-    std::sort(v.begin(), v.end());
-    std::printf("{\"name\": \"denoiser: %s, %s\", \"unit\": \"%%\", \"median\": %.2f, \"min\": %.2f, \"max\": %.2f}\n",
-                what.c_str(), names[k], v[v.size() / 2], v.front(), v.back());
+                           std::to_string(height) + ", " + std::to_string(samples) + " spp" +
+                           (referenceSamples > 0 ? " against " + std::to_string(referenceSamples) + " spp" : "") +
+                           (spatial ? ", spatial noise estimate" : "");
+  const std::string frames = std::to_string(seeds) + " frames";
+  if (referenceSamples > 0) {
+    print(what, "without the denoiser, block error of one frame", noisyBlock);
+    print(what, "without the denoiser, MAE", noisyMae);
+    print(what, "denoised, block error of one frame", denoisedBlock);
+    print(what, "denoised, MAE", denoisedMae);
+    std::vector<double> noisyMean(noisySum.size()), denoisedMean(noisySum.size());
+    for (size_t i = 0; i < noisySum.size(); ++i) noisyMean[i] = noisySum[i] / seeds, denoisedMean[i] = denoisedSum[i] / seeds;
+    print(what, "without the denoiser, block error of the mean of " + frames + " (the noise floor)",
+          {errorsOf(noisyMean, reference.radiance, reference.radiance, width, height).block});
+    print(what, "denoised, block error of the mean of " + frames,
+          {errorsOf(denoisedMean, reference.radiance, reference.radiance, width, height).block});
   }
+  const std::vector<double> zero(differenceSum.size(), 0.0);
+  print(what, "denoised, paired block bias over " + frames,
+        {errorsOf(differenceSum, zero, noisySum, width, height).block});
+  print(what, "time per frame on " + std::to_string(threads) + " threads", milliseconds, "ms");
   return 0;
 }

@@ -33,6 +33,30 @@ float gentlerDifference(float backward, float forward) {
 
 float luminance(const float* c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
 
+// The 12 taps of the 5 x 5 kernel that follow the centre in reading order
+// (kx, ky); the other 12 mirror them. A pair's weight is symmetric, so it
+// is computed once, by the pixel the offset starts from.
+constexpr int kHalfTaps = 12;
+constexpr int kHalfTap[kHalfTaps][2] = {{1, 0},  {2, 0},  {-2, 1}, {-1, 1}, {0, 1}, {1, 1},
+                                        {2, 1},  {-2, 2}, {-1, 2}, {0, 2},  {1, 2}, {2, 2}};
+
+// Calls visit(q, w) for each tap q of pixel (x, y) inside the image, the
+// centre left out, w its weight from the half weights: each half tap t
+// forward (q = p + offset, p's weight t) then backward (q = p - offset, q's
+// weight t). (The GPU kernel recomputes the weights, in reading order: the
+// same sums up to rounding.)
+template <class Visit>
+void forEachTap(int x, int y, int w, int h, int step, const float* halfWeights, Visit&& visit) {
+  const size_t p = size_t(y) * size_t(w) + size_t(x);
+  for (int t = 0; t < kHalfTaps; ++t)
+    for (int side = 1; side >= -1; side -= 2) {
+      const int qx = x + side * kHalfTap[t][0] * step, qy = y + side * kHalfTap[t][1] * step;
+      if (qx < 0 || qx >= w || qy < 0 || qy >= h) continue;
+      const size_t q = size_t(qy) * size_t(w) + size_t(qx);
+      visit(q, halfWeights[kHalfTaps * (side > 0 ? p : q) + size_t(t)]);
+    }
+}
+
 bool hasSurface(const DenoiseInputs& in, size_t p) {
   const float* n = in.normal + 3 * p;
   return std::isfinite(in.depth[p]) && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f);
@@ -54,7 +78,10 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
   illuminationA_.resize(3 * pixels);
   illuminationB_.resize(3 * pixels);
   depthGradient_.resize(2 * pixels);
-  noise_.resize(pixels);
+  noiseVariance_.resize(pixels);
+  weightTotal_.resize(pixels);
+  halfWeights_.resize(kHalfTaps * pixels);
+  levels_.resize(2 * pixels);
   if (in.variance) {
     pixelVariance_.resize(pixels);
     varianceA_.resize(pixels);
@@ -79,7 +106,14 @@ void Denoiser::run(const DenoiseInputs& in, float* out) {
     float* varianceSource = in.variance ? varianceA_.data() : nullptr;
     float* varianceTarget = in.variance ? varianceB_.data() : nullptr;
     for (int iteration = 0; iteration < settings_.iterations; ++iteration) {
-      filterRows(in, iteration, source, target, varianceSource, varianceTarget, rowBegin, rowEnd);
+      const PassView pass = passView(iteration, source, varianceSource);
+      levelRows(in, pass, rowBegin, rowEnd);
+      sync();
+      weighRows(in, pass, rowBegin, rowEnd);
+      sync();
+      totalRows(in, pass, rowBegin, rowEnd);
+      sync();
+      filterRows(in, pass, target, varianceTarget, rowBegin, rowEnd);
       sync();
       std::swap(source, target);
       std::swap(varianceSource, varianceTarget);
@@ -163,71 +197,132 @@ void Denoiser::estimateNoiseRows(const DenoiseInputs& in, int rowBegin, int rowE
           sum2 += l * l;
           ++n;
         }
-      noise_[p] = n > 1 ? float(std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)))) : 0.0f;
+      noiseVariance_[p] = n > 1 ? float(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) : 0.0f;
     }
 }
 
-void Denoiser::filterRows(const DenoiseInputs& in, int iteration, const float* source, float* target,
-                          const float* varianceSource, float* varianceTarget, int rowBegin, int rowEnd) const {
-  const int w = in.width, h = in.height;
-  const int step = 1 << iteration;
+// The edge-stopping weight of the tap from p to q (p != q, q - p = (kx,
+// ky) taps), kernel weight included; 0 for a tap that crosses an edge.
+// Symmetric: every term reads p and q alike (and each pair's weight is
+// computed once, for both), which makes the filter conserve light exactly
+// (see filterRows).
+float Denoiser::tapWeight(const DenoiseInputs& in, const PassView& pass, size_t p, size_t q, int kx, int ky) const {
+  if (in.instance && in.instance[q] != in.instance[p]) return 0.0f;
+  const float* np = in.normal + 3 * p;
+  const float* nq = in.normal + 3 * q;
+  const float cosine = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
+  const float zp = in.depth[p], zq = in.depth[q];
+  const float dz = std::abs(zq - zp);
+  if (!(cosine > 0.0f) || !std::isfinite(dz)) return 0.0f;
+  // The depth change planes through p and q with their own screen-space
+  // gradients would make over the offset, averaged.
+  const float dx = float(kx * pass.step), dy = float(ky * pass.step);
+  const float expectedDz = std::abs(depthGradient_[2 * p] * dx + depthGradient_[2 * p + 1] * dy) +
+                           std::abs(depthGradient_[2 * q] * dx + depthGradient_[2 * q + 1] * dy);
+  const float depthScale =
+      0.5f * settings_.sigmaDepth * expectedDz + 0.5f * kRelativeDepthTolerance * (std::abs(zp) + std::abs(zq));
+  // Colour: the difference over sigmaColor times the two pixels' mean noise
+  // (standard deviation), with a floor of 1 % of their mean level so
+  // noise-free regions still stop at real edges instead of dividing by zero.
+  const float* lp = levels_.data() + 2 * p;
+  const float* lq = levels_.data() + 2 * q;
+  const float colorScale =
+      0.5f * pass.sigmaColor * (lp[1] + lq[1]) + 0.005f * (std::abs(lp[0]) + std::abs(lq[0])) + 1e-6f;
+  // The normal's, the depth's and the colour's factors in one exp.
+  return kKernel[kx + 2] * kKernel[ky + 2] *
+         std::exp(settings_.sigmaNormal * std::log(cosine) -
+                  dz / std::max(depthScale, std::numeric_limits<float>::min()) -
+                  std::abs(lq[0] - lp[0]) / colorScale);
+}
+
+Denoiser::PassView Denoiser::passView(int iteration, const float* source, const float* varianceSource) const {
+  PassView view;
+  view.step = 1 << iteration;
+  view.source = source;
+  view.variance = varianceSource ? varianceSource : noiseVariance_.data();
+  // The first pass with a per-pixel variance compares the pixels' 3 x 3
+  // means, not their single noisy values (see denoiser.h).
+  view.guide = varianceSource && iteration == 0 ? guide_.data() : nullptr;
   // Without a carried variance each pass is assumed to leave half the
   // noise's variance: the scale shrinks with it.
-  const float sigmaColor =
+  view.sigmaColor =
       varianceSource ? settings_.sigmaColor : settings_.sigmaColor * std::pow(0.5f, 0.5f * float(iteration));
+  return view;
+}
+
+// What an iteration's colour weights compare, per pixel: the luminance (or
+// the guide) and the noise's standard deviation, once rather than per tap.
+void Denoiser::levelRows(const DenoiseInputs& in, const PassView& pass, int rowBegin, int rowEnd) {
+  const size_t begin = size_t(rowBegin) * size_t(in.width), end = size_t(rowEnd) * size_t(in.width);
+  for (size_t p = begin; p < end; ++p) {
+    levels_[2 * p] = pass.guide ? pass.guide[p] : luminance(pass.source + 3 * p);
+    levels_[2 * p + 1] = std::sqrt(pass.variance[p]);
+  }
+}
+
+// The half taps' weights of rows [rowBegin, rowEnd): 0 where the tap
+// leaves the image (or crosses an edge, or either pixel has no surface).
+void Denoiser::weighRows(const DenoiseInputs& in, const PassView& pass, int rowBegin, int rowEnd) {
+  const int w = in.width, h = in.height;
   for (int y = rowBegin; y < rowEnd; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = size_t(y) * size_t(w) + size_t(x);
-      const float* cp = source + 3 * p;
+      for (int t = 0; t < kHalfTaps; ++t) {
+        const int kx = kHalfTap[t][0], ky = kHalfTap[t][1];
+        const int qx = x + kx * pass.step, qy = y + ky * pass.step;
+        const bool inside = qx >= 0 && qx < w && qy < h;
+        halfWeights_[kHalfTaps * p + size_t(t)] =
+            inside ? tapWeight(in, pass, p, size_t(qy) * size_t(w) + size_t(qx), kx, ky) : 0.0f;
+      }
+    }
+}
+
+// W_p: the sum of p's tap weights, its own (the kernel's centre) included.
+void Denoiser::totalRows(const DenoiseInputs& in, const PassView& pass, int rowBegin, int rowEnd) {
+  const int w = in.width, h = in.height;
+  for (int y = rowBegin; y < rowEnd; ++y)
+    for (int x = 0; x < w; ++x) {
+      float total = kKernel[2] * kKernel[2];
+      forEachTap(x, y, w, h, pass.step, halfWeights_.data(), [&](size_t, float weight) { total += weight; });
+      weightTotal_[size_t(y) * size_t(w) + size_t(x)] = total;
+    }
+}
+
+// One iteration: out_p = c_p + sum_q a_pq (c_q - c_p), a_pq = w_pq /
+// max(W_p, W_q). The weights are symmetric and every row's off-centre sum
+// is below 1, so the filter's matrix is doubly stochastic: a convex
+// combination per pixel that also moves no light in or out of any region
+// (Milanfar 2013, "Symmetrizing Smoothing Filters"). The usual normalised
+// form w_pq / W_p darkens: a bright outlier q that its neighbours' colour
+// weights reject gives them little, keeps little itself, and its light is
+// lost (skewed path-tracing noise makes that systematic).
+void Denoiser::filterRows(const DenoiseInputs& in, const PassView& pass, float* target, float* varianceTarget,
+                          int rowBegin, int rowEnd) const {
+  const int w = in.width, h = in.height;
+  for (int y = rowBegin; y < rowEnd; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = size_t(y) * size_t(w) + size_t(x);
+      const float* cp = pass.source + 3 * p;
+      const float ownVariance = pass.variance[p];
       if (!hasSurface(in, p)) {
         std::copy(cp, cp + 3, target + 3 * p);
-        if (varianceSource) varianceTarget[p] = varianceSource[p];
+        if (varianceTarget) varianceTarget[p] = ownVariance;
         continue;
       }
-      const float* np = in.normal + 3 * p;
-      const float zp = in.depth[p];
-      const float gx = depthGradient_[2 * p], gy = depthGradient_[2 * p + 1];
-      // The first pass compares the pixels' 3 x 3 means, not their single
-      // noisy values: weights that favour values near a noisy centre pull
-      // skewed path-tracing noise (rare bright samples) toward its mode,
-      // darkening the image; later passes see filtered values already.
-      const bool guided = varianceSource && iteration == 0;
-      const float luminanceP = guided ? guide_[p] : luminance(cp);
-      // A floor of 1 % of the pixel's own level, so noise-free regions
-      // still stop at real edges instead of dividing by zero.
-      const float noise = varianceSource ? std::sqrt(varianceSource[p]) : noise_[p];
-      const float colorScale = sigmaColor * noise + 0.01f * std::abs(luminanceP) + 1e-6f;
+      const float totalP = weightTotal_[p];
       float sum[3] = {0.0f, 0.0f, 0.0f};
       float weightSum = 0.0f, varianceSum = 0.0f;
-      for (int ky = -2; ky <= 2; ++ky) {
-        const int qy = y + ky * step;
-        if (qy < 0 || qy >= h) continue;
-        for (int kx = -2; kx <= 2; ++kx) {
-          const int qx = x + kx * step;
-          if (qx < 0 || qx >= w) continue;
-          const size_t q = size_t(qy) * size_t(w) + size_t(qx);
-          const float* cq = source + 3 * q;
-          float weight = kKernel[kx + 2] * kKernel[ky + 2];
-          if (q != p) {
-            if (in.instance && in.instance[q] != in.instance[p]) continue;
-            const float* nq = in.normal + 3 * q;
-            const float cosine = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
-            const float dz = std::abs(in.depth[q] - zp);
-            if (!(cosine > 0.0f) || !std::isfinite(dz)) continue;
-            const float expectedDz = std::abs(gx * float(qx - x) + gy * float(qy - y));
-            const float depthScale = settings_.sigmaDepth * expectedDz + kRelativeDepthTolerance * std::abs(zp);
-            const float colorDistance = std::abs((guided ? guide_[q] : luminance(cq)) - luminanceP);
-            weight *= std::pow(cosine, settings_.sigmaNormal) *
-                      std::exp(-dz / std::max(depthScale, std::numeric_limits<float>::min())) *
-                      std::exp(-colorDistance / colorScale);
-          }
-          for (int c = 0; c < 3; ++c) sum[c] += weight * cq[c];
-          weightSum += weight;
-          if (varianceSource) varianceSum += weight * weight * varianceSource[q];
-        }
-      }
-      for (int c = 0; c < 3; ++c) target[3 * p + size_t(c)] = sum[c] / weightSum;
-      if (varianceSource) varianceTarget[p] = varianceSum / (weightSum * weightSum);
+      forEachTap(x, y, w, h, pass.step, halfWeights_.data(), [&](size_t q, float weight) {
+        if (weight == 0.0f) return;
+        const float a = weight / std::max(totalP, weightTotal_[q]);
+        const float* cq = pass.source + 3 * q;
+        for (int c = 0; c < 3; ++c) sum[c] += a * cq[c];
+        weightSum += a;
+        varianceSum += a * a * pass.variance[q];
+      });
+      const float own = 1.0f - weightSum;
+      for (int c = 0; c < 3; ++c) target[3 * p + size_t(c)] = sum[c] + own * cp[c];
+      if (varianceTarget) varianceTarget[p] = varianceSum + own * own * ownVariance;
     }
 }
 

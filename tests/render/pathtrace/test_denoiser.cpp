@@ -1,15 +1,20 @@
-// The path tracer's edge-avoiding à-trous denoiser (Dammertz et al. 2010):
-// noise falls and the mean stays, edges between instances, normals and
-// depths stay sharp, albedo texture survives, and the output does not
-// depend on the thread count.
+// The path tracer's edge-avoiding à-trous denoiser (Dammertz et al. 2010,
+// doubly stochastic weights): noise falls and the mean stays, light is
+// neither lost nor gained (exactly, per region, and on skewed path-tracing
+// noise, in expectation, also on a rendered Cornell box), edges between
+// instances, normals and depths stay sharp, albedo texture survives, and
+// the output does not depend on the thread count.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <array>
 #include <cstring>
+#include <map>
 #include <limits>
 #include <vector>
 
 #include "behavior/rng.h"
+#include "pt_test_scenes.h"
 #include "render/pathtrace/denoiser.h"
 
 using namespace sdg;
@@ -58,10 +63,61 @@ double rmsError(const std::vector<float>& image, float truth) {
   return std::sqrt(sum / double(image.size()));
 }
 
+// The error of 16 x 16-pixel block means over the truth's sum, from the
+// per-pixel sums over several frames of (denoised - noisy) and of the
+// truth (or of the noisy frames: its expectation). Since the noisy frame
+// is unbiased, E[denoised - noisy] is the denoiser's bias, and the paired
+// difference carries far less noise than denoised - truth would (the
+// noise that the filter leaves in place cancels): no many-sample
+// reference is needed to resolve 1 %.
+double pairedBlockBias(const std::vector<double>& differenceSum, const std::vector<double>& truthSum, int width,
+                       int height) {
+  constexpr int kBlock = 16;
+  double error = 0, total = 0;
+  for (int by = 0; by + kBlock <= height; by += kBlock)
+    for (int bx = 0; bx + kBlock <= width; bx += kBlock)
+      for (int c = 0; c < 3; ++c) {
+        double difference = 0;
+        for (int y = by; y < by + kBlock; ++y)
+          for (int x = bx; x < bx + kBlock; ++x) {
+            const size_t i = 3 * (size_t(y) * size_t(width) + size_t(x)) + size_t(c);
+            difference += differenceSum[i];
+            total += truthSum[i];
+          }
+        error += std::abs(difference);
+      }
+  return error / total;
+}
+
 double mean(const std::vector<float>& image) {
   double sum = 0;
   for (float v : image) sum += v;
   return sum / double(image.size());
+}
+
+// An irregular frame: noise, several instances, slanted depth, a few
+// pixels of background, a size no thread count divides evenly.
+Frame irregularFrame() {
+  Frame frame(97, 61);
+  Rng rng(6, 6);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      const size_t p = frame.at(x, y);
+      frame.instance[p] = uint32_t((x / 20) + 3 * (y / 25));
+      frame.depth[p] = 1.0f + 0.01f * float(x) + 0.003f * float(y);
+      frame.setRgb(frame.albedo, x, y, float(rng.uniform01()), 0.5f, 0.25f);
+      frame.setRgb(frame.radiance, x, y, float(rng.uniform01()), float(rng.uniform01()), 2.0f * float(rng.uniform01()));
+      if (rng.uniform01() < 0.02) frame.depth[p] = std::numeric_limits<float>::infinity();
+    }
+  return frame;
+}
+
+// A per-pixel variance uniform in [0, scale); none (the spatial estimate)
+// for scale 0.
+void randomVariance(Frame& frame, float scale, Rng& rng) {
+  frame.variance.clear();
+  if (scale > 0.0f)
+    for (size_t p = 0; p < frame.depth.size(); ++p) frame.variance.push_back(scale * float(rng.uniform01()));
 }
 
 }  // namespace
@@ -153,15 +209,30 @@ TEST_CASE("denoiser: a checkerboard albedo under uniform light survives (demodul
       for (int c = 0; c < 3; ++c)
         frame.radiance[3 * frame.at(x, y) + size_t(c)] = a * kLight * (1.0f + 0.2f * gaussianish(rng));
     }
-  const std::vector<float> out = denoise(frame);
-  double noisyError = 0, denoisedError = 0;
-  for (size_t i = 0; i < out.size(); ++i) {
-    const float truth = frame.albedo[i] * kLight;
-    CHECK(out[i] == Approx(truth).epsilon(0.1));
-    noisyError += std::abs(frame.radiance[i] - truth) / truth;
-    denoisedError += std::abs(out[i] - truth) / truth;
+  for (bool perPixel : {false, true}) {
+    INFO((perPixel ? "per-pixel variance" : "spatial noise estimate"));
+    frame.variance.clear();
+    // The luminance of independent 20 % noise per channel.
+    constexpr float kLuminanceShare = 0.2126f * 0.2126f + 0.7152f * 0.7152f + 0.0722f * 0.0722f;
+    if (perPixel)
+      for (size_t p = 0; p < frame.depth.size(); ++p)
+        frame.variance.push_back(kLuminanceShare * std::pow(0.2f * frame.albedo[3 * p] * kLight, 2.0f));
+    const std::vector<float> out = denoise(frame);
+    double noisyError = 0, denoisedError = 0, worst = 0;
+    for (size_t i = 0; i < out.size(); ++i) {
+      const float truth = frame.albedo[i] * kLight;
+      noisyError += std::abs(frame.radiance[i] - truth) / truth;
+      denoisedError += std::abs(out[i] - truth) / truth;
+      worst = std::max(worst, double(std::abs(out[i] - truth) / truth));
+    }
+    INFO("mean error " << noisyError / double(out.size()) << " -> " << denoisedError / double(out.size())
+                       << ", the worst pixel " << worst);
+    CHECK(denoisedError * 10.0 < noisyError);
+    // A lone outlier keeps more of its own value than under a normalised
+    // filter (the filter keeps its light rather than dropping it), so the
+    // tail is somewhat wider than the mean.
+    CHECK(worst < 0.15);
   }
-  CHECK(denoisedError * 4.0 < noisyError);
 }
 
 TEST_CASE("denoiser: pixels without a surface keep their radiance", "[pathtrace][denoiser]") {
@@ -189,24 +260,11 @@ TEST_CASE("denoiser: pixels without a surface keep their radiance", "[pathtrace]
 }
 
 TEST_CASE("denoiser: the output is the same whatever the thread count", "[pathtrace][denoiser]") {
-  // An irregular frame: noise, several instances, slanted depth, a few
-  // pixels of background, a size no thread count divides evenly.
-  Frame frame(97, 61);
+  Frame frame = irregularFrame();
   Rng rng(6, 6);
-  for (int y = 0; y < frame.height; ++y)
-    for (int x = 0; x < frame.width; ++x) {
-      const size_t p = frame.at(x, y);
-      frame.instance[p] = uint32_t((x / 20) + 3 * (y / 25));
-      frame.depth[p] = 1.0f + 0.01f * float(x) + 0.003f * float(y);
-      frame.setRgb(frame.albedo, x, y, float(rng.uniform01()), 0.5f, 0.25f);
-      frame.setRgb(frame.radiance, x, y, float(rng.uniform01()), float(rng.uniform01()), 2.0f * float(rng.uniform01()));
-      if (rng.uniform01() < 0.02) frame.depth[p] = std::numeric_limits<float>::infinity();
-    }
   for (bool perPixel : {true, false}) {
     INFO((perPixel ? "per-pixel variance" : "spatial noise estimate"));
-    frame.variance.clear();
-    if (perPixel)
-      for (size_t p = 0; p < frame.depth.size(); ++p) frame.variance.push_back(0.05f * float(rng.uniform01()));
+    randomVariance(frame, perPixel ? 0.05f : 0.0f, rng);
     const std::vector<float> single = denoise(frame, true, 1);
     for (unsigned threads : {2u, 3u, 8u, 61u, 200u}) {
       INFO(threads << " threads");
@@ -225,4 +283,126 @@ TEST_CASE("denoiser: the output is the same whatever the thread count", "[pathtr
   reused.run(frame.inputs(), out.data());
   CHECK(std::memcmp(single.data(), out.data(), single.size() * sizeof(float)) == 0);
   for (float v : out) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("denoiser: each region that edges close keeps its light exactly", "[pathtrace][denoiser]") {
+  // The filter moves illumination (radiance over albedo) within an
+  // instance, but its sum over the instance stays, whatever the noise
+  // estimate; background pixels keep theirs.
+  Frame frame = irregularFrame();
+  Rng rng(7, 7);
+  for (bool perPixel : {false, true}) {
+    INFO((perPixel ? "per-pixel variance" : "spatial noise estimate"));
+    randomVariance(frame, perPixel ? 0.5f : 0.0f, rng);
+    const std::vector<float> out = denoise(frame);
+    // It did smooth: the differences between neighbours fall (green, whose
+    // albedo is uniform).
+    double before = 0, after = 0;
+    for (size_t i = 4; i < out.size(); i += 3) {
+      before += std::abs(frame.radiance[i] - frame.radiance[i - 3]);
+      after += std::abs(out[i] - out[i - 3]);
+    }
+    CHECK(after < 0.5 * before);
+    std::map<uint32_t, std::array<double, 2>> sums;  // per instance: before, after
+    for (size_t i = 0; i < out.size(); ++i) {
+      const float divisor = frame.albedo[i] >= 1e-3f ? frame.albedo[i] : 1.0f;
+      sums[frame.instance[i / 3]][0] += frame.radiance[i] / divisor;
+      sums[frame.instance[i / 3]][1] += out[i] / divisor;
+    }
+    for (const auto& [id, sum] : sums) {
+      INFO("instance " << id);
+      CHECK(sum[1] == Approx(sum[0]).epsilon(1e-5));
+    }
+  }
+}
+
+TEST_CASE("denoiser: skewed noise (rare bright samples) is not darkened", "[pathtrace][denoiser]") {
+  // Path-tracing noise at 4 samples: most samples well below the mean, a
+  // few far above it. A wall lit by a gradient; each pixel
+  // the mean of 4 samples, with the variance of that mean as the tracer
+  // reports it. A filter whose colour weights reject the bright samples
+  // without keeping their light darkens the image: the former normalised
+  // filter's block means were 3.4 % off here, this one's 0.5 % (light it
+  // moves along the gradient at the image's borders).
+  constexpr int kSize = 64, kFrames = 12, kSamples = 4;
+  Frame frame(kSize, kSize);
+  std::vector<double> truthSum(frame.radiance.size()), differenceSum(frame.radiance.size());
+  std::vector<double> noisyChange, denoisedChange;  // between two frames, for the noise left
+  std::vector<float> firstOut, firstNoisy;
+  Rng rng(8, 8);
+  for (int f = 0; f < kFrames; ++f) {
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const size_t p = frame.at(x, y);
+        const float light = 0.4f + 0.01f * float(x) + 0.004f * float(y);
+        double sum = 0, sum2 = 0;
+        for (int s = 0; s < kSamples; ++s) {
+          // Mean 1: 0.5 with probability 0.9, 5.5 with 0.1.
+          const double sample = light * (rng.uniform01() < 0.1 ? 5.5 : 0.5);
+          sum += sample, sum2 += sample * sample;
+        }
+        const double meanValue = sum / kSamples;
+        frame.setRgb(frame.radiance, x, y, float(meanValue), float(meanValue), float(meanValue));
+        frame.variance.resize(frame.depth.size());
+        frame.variance[p] = float(std::max(0.0, sum2 / kSamples - meanValue * meanValue) / (kSamples - 1));
+        for (int c = 0; c < 3; ++c) truthSum[3 * p + size_t(c)] += light;
+      }
+    const std::vector<float> out = denoise(frame);
+    for (size_t i = 0; i < out.size(); ++i) differenceSum[i] += double(out[i]) - double(frame.radiance[i]);
+    if (f == 0) firstOut = out, firstNoisy = frame.radiance;
+    if (f == 1) {
+      double noisy = 0, denoised = 0;
+      for (size_t i = 0; i < out.size(); ++i) {
+        noisy += std::abs(frame.radiance[i] - firstNoisy[i]);
+        denoised += std::abs(out[i] - firstOut[i]);
+      }
+      INFO("frame-to-frame change: noisy " << noisy << ", denoised " << denoised);
+      CHECK(denoised < 0.3 * noisy);
+    }
+  }
+  const double bias = pairedBlockBias(differenceSum, truthSum, kSize, kSize);
+  INFO("block bias " << 100 * bias << " %");
+  CHECK(bias < 0.01);
+}
+
+TEST_CASE("denoiser: the Cornell box at 4 samples keeps its block means within 1.5 %", "[pathtrace][denoiser]") {
+  // The issue's target on the real thing (docs/performance.md measures it
+  // against a 1,024-sample reference at 16 frames: about 1 %; the former
+  // filter 1.7 %). Four frames, paired as above.
+  constexpr int kSize = 128, kFrames = 4;
+  const Scene scene = loadScene(SDG_SOURCE_DIR "/scenes/examples/cornell_box.yaml", builtinRegistry().catalog());
+  const RenderList list = buildRenderList(scene.stage);
+  PathTraceSettings settings;
+  settings.samples = 4;
+  settings.maxBounces = int(scene.render.getUInt("max_bounces"));
+  settings.threads = 2;
+  PathTracer tracer(pttest::testAssets(), settings);
+  Denoiser denoiser{DenoiseSettings{}};
+  std::vector<double> noisySum, differenceSum;
+  std::vector<float> out, firstOut, firstNoisy;
+  double noisyChange = 0, denoisedChange = 0;
+  PathTracedFrame frame;
+  for (int f = 0; f < kFrames; ++f) {
+    tracer.render(list, 0, kSize, kSize, uint64_t(f), frame);
+    out.resize(frame.radiance.size());
+    denoiser.run({frame.width, frame.height, frame.radiance.data(), frame.albedo.data(), frame.normal.data(),
+                  frame.depth.data(), frame.instance.data(), frame.variance.data()},
+                 out.data());
+    noisySum.resize(out.size()), differenceSum.resize(out.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+      noisySum[i] += frame.radiance[i];
+      differenceSum[i] += double(out[i]) - double(frame.radiance[i]);
+    }
+    if (f == 0) firstOut = out, firstNoisy = frame.radiance;
+    if (f == 1)
+      for (size_t i = 0; i < out.size(); ++i) {
+        noisyChange += std::abs(frame.radiance[i] - firstNoisy[i]);
+        denoisedChange += std::abs(out[i] - firstOut[i]);
+      }
+  }
+  const double bias = pairedBlockBias(differenceSum, noisySum, kSize, kSize);
+  INFO("block bias " << 100 * bias << " %; frame-to-frame change: noisy " << noisyChange << ", denoised "
+                     << denoisedChange);
+  CHECK(bias < 0.015);
+  CHECK(denoisedChange < 0.3 * noisyChange);  // and it does denoise
 }

@@ -262,7 +262,10 @@ struct GpuPathTracer::Impl {
     pass(0, 0, 0);
     pass(1, 0, 0);
     int source = 0;
-    for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) pass(2, i, source);
+    for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) {
+      pass(4, i, source);  // the weight sums W
+      pass(2, i, source);  // the filter, which reads its neighbours' W
+    }
     pass(3, 0, source);
     // The tracer's bindings again for the next frame (binding 2 is its node buffer).
     g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kNodes, buffers[kNodes]);
