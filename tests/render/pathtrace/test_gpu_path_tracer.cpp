@@ -10,6 +10,7 @@
 
 #include "render/pathtrace/gpu/gl_compute.h"
 #include "render/pathtrace/gpu/gpu_path_tracer.h"
+#include "render/pathtrace/gpu/gpu_scene.h"
 #include "render/test_images.h"
 
 using namespace sdg;
@@ -322,4 +323,35 @@ TEST_CASE("gpu path tracer: the GL 4.3 read-back (no pinned buffers) gives the s
   setenv("SDG_GPU_GL43", "1", 1);
   checkDisplayForm();
   unsetenv("SDG_GPU_GL43");
+}
+
+TEST_CASE("gpu path tracer: a kernel compiled for the stage's features traces what the every-feature kernel does",
+          "[pathtrace][gpu]") {
+  PathTraceSettings settings;
+  settings.samples = 4;
+  settings.maxBounces = 4;
+  auto specialised = gpuTracer(settings), every = gpuTracer(settings);
+  if (!specialised || !every) return;
+  every->setEveryKernelFeature(true);
+  // The Cornell room has none of the optional features; with a cut-out
+  // screen and a light's diffuse multiplier it has two.
+  std::string withFeatures = kCornell;
+  withFeatures += "  /Looks/Leaf: {type: Material, inputs:diffuse_color_constant: [0.2, 0.6, 0.2], "
+                  "inputs:opacity_constant: 0.2, inputs:enable_opacity: true, inputs:opacity_threshold: 0.5}\n"
+                  "  /Screen: {type: Plane, axis: Y, width: 0.6, length: 0.6, translate: [0, -0.5, 0.8], "
+                  "material: /Looks/Leaf}\n"
+                  "  /Fill: {type: SphereLight, inputs:radius: 0.05, inputs:intensity: 50, inputs:diffuse: 0.5, "
+                  "translate: [0.5, -0.5, 1.5]}\n";
+  for (const std::string& yaml : {std::string(kCornell), withFeatures}) {
+    const RenderList list = renderListOf(yaml);
+    const PathTracedFrame a = gpuTrace(*specialised, list, 24, 16, 5), b = gpuTrace(*every, list, 24, 16, 5);
+    CHECK(specialised->stageFeatures() ==
+          (yaml == kCornell ? 0u : uint32_t(kGpuOpacity) | uint32_t(kGpuLobeMultipliers)));
+    const PathTracedFrame other = gpuTrace(*every, list, 24, 16, 6);
+    const double noise = rms(b, other);
+    INFO("rms specialised vs every feature " << rms(a, b) << ", seed to seed " << noise);
+    REQUIRE(noise > 0);
+    CHECK(rms(a, b) <= 0.05 * noise);
+    CHECK(a.instance == b.instance);
+  }
 }

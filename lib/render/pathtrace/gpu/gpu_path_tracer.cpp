@@ -10,6 +10,7 @@
 #include <sstream>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -122,8 +123,14 @@ struct GpuPathTracer::Impl {
   PathTraceSettings settings;
   std::unique_ptr<GlComputeContext> context;
   GpuSceneData scene;
-  GLuint program = 0;
-  GLint traceGroup[3] = {8, 4, 1};  // the program's local size
+  // The tracing kernel compiled per set of stage features (gpu_scene.h's
+  // GpuKernelFeature): each frame runs the one for its own stage's.
+  struct TraceProgram {
+    GLuint id = 0;
+    GLint group[3] = {8, 4, 1};  // the program's local size
+  };
+  std::map<uint32_t, TraceProgram> programs;
+  bool everyFeature = false;  // setEveryKernelFeature(): one kernel with all of them
   std::array<GLuint, kBindingCount> buffers{};
   std::array<size_t, kBindingCount> capacity{};
   std::vector<FilmPixel> film;  // the read-back's copy where there is no pinned buffer
@@ -212,15 +219,38 @@ struct GpuPathTracer::Impl {
     return id;
   }
 
-  void compile() {
-    const GlComputeApi& g = gl();
-    const std::string sources[] = {kernelSource(kPtCommonGlsl, "pt_common.glsl"), kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
-                                   kernelSource(kPtSceneGlsl, "pt_scene.glsl"), kernelSource(kPtLightsGlsl, "pt_lights.glsl"),
+  // The kernel with the code of `features` only: their SDG_* switches
+  // defined between the #version line and the first part's body.
+  const TraceProgram& programFor(uint32_t features) {
+    auto found = programs.find(features);
+    if (found != programs.end()) return found->second;
+    const std::string common = kernelSource(kPtCommonGlsl, "pt_common.glsl");
+    const size_t versionEnd = common.find('\n') + 1;
+    auto flag = [&](const char* name, GpuKernelFeature f) {
+      return std::string("#define ") + name + ((features & f) ? " 1\n" : " 0\n");
+    };
+    const std::string sources[] = {common.substr(0, versionEnd),
+                                   flag("SDG_DOME_MAPS", kGpuDomeMaps) + flag("SDG_OPACITY", kGpuOpacity) +
+                                       flag("SDG_NORMAL_MAPS", kGpuNormalMaps) + flag("SDG_TRIPLANAR", kGpuTriplanar) +
+                                       flag("SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers),
+                                   common.substr(versionEnd),
+                                   kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
+                                   kernelSource(kPtSceneGlsl, "pt_scene.glsl"),
+                                   kernelSource(kPtLightsGlsl, "pt_lights.glsl"),
                                    kernelSource(kPtTraceGlsl, "pt_trace.glsl")};
     const char* parts[std::size(sources)];
     for (size_t k = 0; k < std::size(sources); ++k) parts[k] = sources[k].c_str();
-    program = build(parts, std::size(parts), "path tracing");
-    gl().glGetProgramiv(program, GL_COMPUTE_WORK_GROUP_SIZE, traceGroup);
+    TraceProgram program;
+    program.id = build(parts, std::size(parts), "path tracing");
+    gl().glGetProgramiv(program.id, GL_COMPUTE_WORK_GROUP_SIZE, program.group);
+    return programs.emplace(features, program).first->second;
+  }
+
+  // The buffers, and the kernel of a stage with none of the optional
+  // features, so a kernel that does not compile here fails at once.
+  void compile() {
+    const GlComputeApi& g = gl();
+    programFor(0);
     g.glGenBuffers(GLsizei(buffers.size()), buffers.data());
     // Every block gets a store before the first dispatch, even one a scene leaves empty.
     for (GLuint b = 0; b < kBindingCount; ++b) upload(Binding(b), nullptr, 0);
@@ -372,7 +402,8 @@ struct GpuPathTracer::Impl {
       capacity[kFilm] = pixels * sizeof(FilmPixel);
     }
     for (GLuint b = 0; b < kBindingCount; ++b) g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
-    g.glUseProgram(program);
+    const TraceProgram& program = programFor(everyFeature ? uint32_t(kGpuAllFeatures) : scene.kernelFeatures);
+    g.glUseProgram(program.id);
     if (timing) {
       g.glFinish();
       if (!timestamps[0]) g.glGenQueries(GLsizei(timestamps.size()), timestamps.data());
@@ -381,8 +412,8 @@ struct GpuPathTracer::Impl {
     const auto traceStart = std::chrono::steady_clock::now();
     const int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
                                                   : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
-    const GLuint groupsX = GLuint((width + traceGroup[0] - 1) / traceGroup[0]),
-                 groupsY = GLuint((height + traceGroup[1] - 1) / traceGroup[1]);
+    const GLuint groupsX = GLuint((width + program.group[0] - 1) / program.group[0]),
+                 groupsY = GLuint((height + program.group[1] - 1) / program.group[1]);
     for (int first = 0; first < samples; first += perDispatch) {
       header.size[2] = first;
       header.size[3] = std::min(perDispatch, samples - first);
@@ -492,7 +523,7 @@ GpuPathTracer::~GpuPathTracer() {
     impl_->context->run([this] {
       const GlComputeApi& g = impl_->gl();
       g.glDeleteBuffers(GLsizei(impl_->buffers.size()), impl_->buffers.data());
-      if (impl_->program) g.glDeleteProgram(impl_->program);
+      for (const auto& [features, program] : impl_->programs) g.glDeleteProgram(program.id);
       if (impl_->denoiseProgram) g.glDeleteProgram(impl_->denoiseProgram);
       if (impl_->denoiseWork) g.glDeleteBuffers(1, &impl_->denoiseWork);
       if (impl_->pinned) g.glDeleteBuffers(1, &impl_->pinned);
@@ -516,6 +547,8 @@ void GpuPathTracer::setDenoiser(const std::optional<DenoiseSettings>& settings, 
   impl_->denoiseWithVariance = perPixelVariance;
 }
 void GpuPathTracer::setSamplesPerDispatch(int samples) { impl_->samplesPerDispatch = std::max(samples, 0); }
+void GpuPathTracer::setEveryKernelFeature(bool every) { impl_->everyFeature = every; }
+uint32_t GpuPathTracer::stageFeatures() const { return impl_->scene.kernelFeatures; }
 std::string GpuPathTracer::device() const { return impl_->context->description(); }
 bool GpuPathTracer::onGpu() const { return impl_->context->onGpu(); }
 

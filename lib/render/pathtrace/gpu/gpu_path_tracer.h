@@ -76,6 +76,14 @@ class GpuPathTracer {
   // Samples per pixel in one dispatch; 0 (the default): about a million
   // paths a dispatch. Changes the timing, never the image.
   void setSamplesPerDispatch(int samples);
+  // The tracing kernel is compiled for each frame's stage's features
+  // (gpu_scene.h's GpuKernelFeature; the first frame with a new set pays
+  // the compilation); with `every`, one kernel holding all of them traces
+  // every frame instead. The same image either way, to the GPU's rounding
+  // (tests compare them).
+  void setEveryKernelFeature(bool every);
+  // The GpuKernelFeature bits of the last frame's stage.
+  uint32_t stageFeatures() const;
   // The GL renderer and version strings.
   std::string device() const;
   bool onGpu() const;

@@ -207,6 +207,23 @@ void GpuSceneData::update(const RenderList& list) {
     instancesChanged = true;
   }
   packLights(list);
+  kernelFeatures = featuresInUse();
+}
+
+// From the packed records alone, so a frame's kernel is a function of the
+// frame's stage (whatever came before it: shards and reruns agree).
+uint32_t GpuSceneData::featuresInUse() const {
+  uint32_t features = anyLobeMultiplier ? kGpuLobeMultipliers : 0u;
+  for (const GpuMaterialRecord& m : materials) {
+    if (m.mapInfo[3] != 0) features |= kGpuOpacity;
+    if (m.maps[3] >= 0) features |= kGpuNormalMaps;
+    if (m.modes[1] != 0) features |= kGpuTriplanar;
+  }
+  for (const GpuInstanceRecord& i : instances)
+    if (i.flags[0]) features |= kGpuOpacity;
+  for (const GpuLightRecord& l : lights)
+    if (l.info[2] != 0) features |= kGpuDomeMaps;
+  return features;
 }
 
 void GpuSceneData::packLights(const RenderList& list) {

@@ -43,6 +43,18 @@ struct GpuLightRecord {
       toLightCone[4], misc[4], mapScale[4], ambient[4], domeFromWorld[12];
 };
 
+// What a frame's stage uses that the tracing kernel can be compiled
+// without (pt_common.glsl's SDG_* switches): a kernel holds the code of
+// the features set only.
+enum GpuKernelFeature : uint32_t {
+  kGpuDomeMaps = 1u << 0,          // a dome light with a map
+  kGpuOpacity = 1u << 1,           // a material with an opacity (cut-outs)
+  kGpuNormalMaps = 1u << 2,        // a material with a normal map
+  kGpuTriplanar = 1u << 3,         // a material projected triplanar
+  kGpuLobeMultipliers = 1u << 4,   // a light's inputs:diffuse or inputs:specular not 1
+  kGpuAllFeatures = (1u << 5) - 1,
+};
+
 class GpuSceneData {
  public:
   explicit GpuSceneData(const AssetResolver& assets);
@@ -79,12 +91,14 @@ class GpuSceneData {
   int32_t dome[4] = {0, 0, 0, 0};        // width, height, first texel word, pick cdf offset
   int32_t domeTables[4] = {0, 0, 0, 0};  // row cdf, column cdfs, row cosines, texel solid angles
   Eigen::AlignedBox3f bounds;
+  uint32_t kernelFeatures = 0;  // GpuKernelFeature bits of this frame's stage
 
  private:
   struct Mesh;
   uint32_t meshFor(const RenderItem& item);
   int32_t textureIndex(const PtTexture* texture);
   void packLights(const RenderList& list);
+  uint32_t featuresInUse() const;
 
   const AssetResolver& assets_;
   GpuBvhBuilder builder_;

@@ -87,7 +87,7 @@ vec3 rows3T(vec4 rows[3], vec3 v) { return rows[0].xyz * v.x + rows[1].xyz * v.y
 
 vec3 domeRadiance(Light l, vec3 wi) {
   vec3 radiance = l.ambient.xyz;
-  if (l.info.z != 0) radiance += l.mapScale.xyz * domeTexel(rows3(l.domeFromWorld, wi));
+  if (kDomeMaps && l.info.z != 0) radiance += l.mapScale.xyz * domeTexel(rows3(l.domeFromWorld, wi));
   return radiance;
 }
 
@@ -178,7 +178,7 @@ float densityOf(Light l, vec3 p, vec3 n, vec3 wi) {
   }
   // The dome.
   float density = (1.0 - l.misc.y) * max(0.0, dot(n, wi)) / kPi;
-  if (l.info.z != 0 && l.misc.y > 0.0) density += l.misc.y * domeMapPdf(rows3(l.domeFromWorld, wi));
+  if (kDomeMaps && l.info.z != 0 && l.misc.y > 0.0) density += l.misc.y * domeMapPdf(rows3(l.domeFromWorld, wi));
   return density;
 }
 
@@ -269,7 +269,7 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
     s.distance = kInf;
     s.radiance = l.radiancePick.xyz;
   } else {
-    if (uRest < l.misc.y) {
+    if (kDomeMaps && uRest < l.misc.y) {
       s.direction = normalize(rows3T(l.domeFromWorld, domeMapSample(u)));
     } else {
       vec2 d = concentricDisk(u);

@@ -131,7 +131,7 @@ vec2 transformUv(Material m, vec2 uv) {
 // compiled kernel: GLSL inlines every call, and the kernel's size is what
 // a driver's compile time (llvmpipe's above all) grows with.
 vec4 sampleMap(Material m, int map, Geometry g, vec3 n) {
-  bool triplanar = m.modes.y != 0;
+  bool triplanar = kTriplanar && m.modes.y != 0;
   vec3 w = abs(n);
   w /= (w.x + w.y + w.z);
   vec3 p = g.position;
@@ -163,7 +163,7 @@ vec3 mappedNormal(Material m, Geometry g, vec3 n) {
 }
 bool surfaceOpaque(Material m, Geometry g) {
   float o = m.opacity.x;
-  int source = m.mapInfo.w;
+  int source = kOpacity ? m.mapInfo.w : 0;
   if (source == 0) return true;
   if (source >= 2) {
     vec4 t = sampleMap(m, source == 2 ? m.mapInfo.x : m.maps.x, g, g.shadingNormal);
@@ -201,7 +201,7 @@ Shaded shadeSurface(Material m, Geometry g, vec3 towardViewer) {
   s.roughness = clamp(roughness, 0.0, 1.0);
   s.metallic = clamp(metallic, 0.0, 1.0);
   s.specularLevel = m.placement.z;
-  if (m.maps.w >= 0) n = mappedNormal(m, g, n);
+  if (kNormalMaps && m.maps.w >= 0) n = mappedNormal(m, g, n);
   const float kMinCosine = 0.01;
   float c = dot(n, towardViewer);
   if (c < kMinCosine) n = normalize(n + (kMinCosine - c) * towardViewer);
@@ -353,7 +353,7 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
     Instance inst = instances[enter];
     Mesh mesh = meshes[inst.ids.x];
     instance = enter;
-    cutOut = inst.flags.x != 0;
+    cutOut = kOpacity && inst.flags.x != 0;
     ro = rowsTimes(inst.local, o, 1.0);
     rd = rowsTimes(inst.local, d, 0.0);
     inv = 1.0 / rd;

@@ -47,7 +47,7 @@ void main() {
   }
   Sampler sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y);
   int maxBounces = params.counts.x;
-  bool lobeMultipliers = params.counts.w != 0;
+  bool lobeMultipliers = kLobeMultipliers && params.counts.w != 0;
   int sampleEnd = params.size.z + params.size.w;
   int s = params.size.z - (labels ? 1 : 0);
 
