@@ -333,8 +333,8 @@ TEST_CASE("gpu path tracer: a kernel compiled for the stage's features traces wh
   auto specialised = gpuTracer(settings), every = gpuTracer(settings);
   if (!specialised || !every) return;
   every->setEveryKernelFeature(true);
-  // The Cornell room has none of the optional features; with a cut-out
-  // screen and a light's diffuse multiplier it has two.
+  // The Cornell room has one of the optional features (a rect light);
+  // with a cut-out screen and a sphere light with a diffuse multiplier, four.
   std::string withFeatures = kCornell;
   withFeatures += "  /Looks/Leaf: {type: Material, inputs:diffuse_color_constant: [0.2, 0.6, 0.2], "
                   "inputs:opacity_constant: 0.2, inputs:enable_opacity: true, inputs:opacity_threshold: 0.5}\n"
@@ -345,8 +345,9 @@ TEST_CASE("gpu path tracer: a kernel compiled for the stage's features traces wh
   for (const std::string& yaml : {std::string(kCornell), withFeatures}) {
     const RenderList list = renderListOf(yaml);
     const PathTracedFrame a = gpuTrace(*specialised, list, 24, 16, 5), b = gpuTrace(*every, list, 24, 16, 5);
+    const uint32_t lamp = kGpuShapeLights;  // the room's rect light
     CHECK(specialised->stageFeatures() ==
-          (yaml == kCornell ? 0u : uint32_t(kGpuOpacity) | uint32_t(kGpuLobeMultipliers)));
+          (yaml == kCornell ? lamp : lamp | kGpuOpacity | kGpuLobeMultipliers | kGpuSphereLights));
     const PathTracedFrame other = gpuTrace(*every, list, 24, 16, 6);
     const double noise = rms(b, other);
     INFO("rms specialised vs every feature " << rms(a, b) << ", seed to seed " << noise);

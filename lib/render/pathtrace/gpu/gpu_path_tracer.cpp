@@ -232,7 +232,11 @@ struct GpuPathTracer::Impl {
     const std::string sources[] = {common.substr(0, versionEnd),
                                    flag("SDG_DOME_MAPS", kGpuDomeMaps) + flag("SDG_OPACITY", kGpuOpacity) +
                                        flag("SDG_NORMAL_MAPS", kGpuNormalMaps) + flag("SDG_TRIPLANAR", kGpuTriplanar) +
-                                       flag("SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers),
+                                       flag("SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers) +
+                                       flag("SDG_SPHERE_LIGHTS", kGpuSphereLights) +
+                                       flag("SDG_SHAPE_LIGHTS", kGpuShapeLights) +
+                                       flag("SDG_DISTANT_LIGHTS", kGpuDistantLights) +
+                                       flag("SDG_DOME_LIGHTS", kGpuDomeLights),
                                    common.substr(versionEnd),
                                    kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
                                    kernelSource(kPtSceneGlsl, "pt_scene.glsl"),

@@ -221,8 +221,17 @@ uint32_t GpuSceneData::featuresInUse() const {
   }
   for (const GpuInstanceRecord& i : instances)
     if (i.flags[0]) features |= kGpuOpacity;
-  for (const GpuLightRecord& l : lights)
+  for (const GpuLightRecord& l : lights) {
     if (l.info[2] != 0) features |= kGpuDomeMaps;
+    switch (LightKind(l.info[0])) {
+      case LightKind::Sphere: features |= kGpuSphereLights; break;
+      case LightKind::Rect:
+      case LightKind::Disk:
+      case LightKind::Cylinder: features |= kGpuShapeLights; break;
+      case LightKind::Distant: features |= kGpuDistantLights; break;
+      case LightKind::Dome: features |= kGpuDomeLights; break;
+    }
+  }
   return features;
 }
 

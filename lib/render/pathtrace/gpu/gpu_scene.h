@@ -52,7 +52,11 @@ enum GpuKernelFeature : uint32_t {
   kGpuNormalMaps = 1u << 2,        // a material with a normal map
   kGpuTriplanar = 1u << 3,         // a material projected triplanar
   kGpuLobeMultipliers = 1u << 4,   // a light's inputs:diffuse or inputs:specular not 1
-  kGpuAllFeatures = (1u << 5) - 1,
+  kGpuSphereLights = 1u << 5,      // a sphere light
+  kGpuShapeLights = 1u << 6,       // a rect, disk or cylinder light
+  kGpuDistantLights = 1u << 7,     // a distant light
+  kGpuDomeLights = 1u << 8,        // a dome light
+  kGpuAllFeatures = (1u << 9) - 1,
 };
 
 class GpuSceneData {

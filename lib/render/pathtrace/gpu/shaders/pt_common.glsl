@@ -15,6 +15,10 @@ const bool kOpacity = SDG_OPACITY != 0;                  // a material with an o
 const bool kNormalMaps = SDG_NORMAL_MAPS != 0;           // a material with a normal map
 const bool kTriplanar = SDG_TRIPLANAR != 0;              // a material projected triplanar
 const bool kLobeMultipliers = SDG_LOBE_MULTIPLIERS != 0; // a light's inputs:diffuse or inputs:specular not 1
+const bool kSphereLights = SDG_SPHERE_LIGHTS != 0;       // a sphere light
+const bool kShapeLights = SDG_SHAPE_LIGHTS != 0;         // a rect, disk or cylinder light
+const bool kDistantLights = SDG_DISTANT_LIGHTS != 0;     // a distant light
+const bool kDomeLights = SDG_DOME_LIGHTS != 0;           // a dome light
 
 const float kPi = 3.14159265358979323846;
 const float kInf = uintBitsToFloat(0x7f800000u);

@@ -105,7 +105,7 @@ bool hitShape(Light l, vec3 o, vec3 d, float tMin, float tMax, out float t) {
   int kind = l.info.x;
   vec3 position = l.positionRadius.xyz;
   float radius = l.positionRadius.w;
-  if (kind == kSphere) {
+  if (kSphereLights && kind == kSphere) {
     if (l.info.w != 0) return false;
     vec3 oc = o - position;
     float r2 = radius * radius;
@@ -120,7 +120,7 @@ bool hitShape(Light l, vec3 o, vec3 d, float tMin, float tMax, out float t) {
     t = c / q;
     return t > tMin && t < tMax;
   }
-  if (kind == kRect || kind == kDisk) {
+  if (kShapeLights && (kind == kRect || kind == kDisk)) {
     vec3 emit = l.emitArea.xyz;
     float facing = dot(d, emit);
     if (!(facing < 0.0)) return false;
@@ -131,7 +131,7 @@ bool hitShape(Light l, vec3 o, vec3 d, float tMin, float tMax, out float t) {
     if (kind == kRect) return abs(x) <= 0.5 * l.axisXWidth.w && abs(y) <= 0.5 * l.axisYHeight.w;
     return x * x + y * y <= radius * radius;
   }
-  if (kind == kCylinder) {
+  if (kShapeLights && kind == kCylinder) {
     vec3 oc = o - position;
     float oy = dot(oc, l.axisYHeight.xyz), oz = dot(oc, l.axisZLength.xyz);
     float dy = dot(d, l.axisYHeight.xyz), dz = dot(d, l.axisZLength.xyz);
@@ -151,7 +151,7 @@ bool hitShape(Light l, vec3 o, vec3 d, float tMin, float tMax, out float t) {
 
 float densityOf(Light l, vec3 p, vec3 n, vec3 wi) {
   int kind = l.info.x;
-  if (kind == kSphere) {
+  if (kSphereLights && kind == kSphere) {
     vec3 toCentre = l.positionRadius.xyz - p;
     float d2 = dot(toCentre, toCentre), r2 = l.positionRadius.w * l.positionRadius.w;
     if (l.info.w != 0 || !(d2 > r2)) return 0.0;
@@ -159,7 +159,7 @@ float densityOf(Light l, vec3 p, vec3 n, vec3 wi) {
     float oneMinusCosMax = sin2Max / (1.0 + sqrt(max(0.0, 1.0 - sin2Max)));
     return 1.0 / (2.0 * kPi * oneMinusCosMax);
   }
-  if (kind == kRect || kind == kDisk || kind == kCylinder) {
+  if (kShapeLights && (kind == kRect || kind == kDisk || kind == kCylinder)) {
     float t;
     if (!hitShape(l, p, wi, 0.0, kInf, t)) return 0.0;
     vec3 q = p + t * wi;
@@ -171,11 +171,12 @@ float densityOf(Light l, vec3 p, vec3 n, vec3 wi) {
     float cosLight = -dot(normal, wi);
     return cosLight > 0.0 ? t * t / (l.emitArea.w * cosLight) : 0.0;
   }
-  if (kind == kDistant) {
+  if (kDistantLights && kind == kDistant) {
     if (l.info.y != 0) return 0.0;
     vec3 c = cross(wi, l.toLightCone.xyz);
     return dot(wi, l.toLightCone.xyz) > 0.0 && dot(c, c) <= l.misc.x ? 1.0 / (2.0 * kPi * l.toLightCone.w) : 0.0;
   }
+  if (!kDomeLights) return 0.0;
   // The dome.
   float density = (1.0 - l.misc.y) * max(0.0, dot(n, wi)) / kPi;
   if (kDomeMaps && l.info.z != 0 && l.misc.y > 0.0) density += l.misc.y * domeMapPdf(rows3(l.domeFromWorld, wi));
@@ -206,7 +207,7 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
   float uRest = clamp((uPick - params.tables[cdf + index]) / pick, 0.0, kOneBelowOne);
   s.light = index;
   int kind = l.info.x;
-  if (kind == kSphere) {
+  if (kSphereLights && kind == kSphere) {
     vec3 toCentre = l.positionRadius.xyz - p;
     float d2 = dot(toCentre, toCentre);
     float r2 = l.positionRadius.w * l.positionRadius.w;
@@ -232,7 +233,7 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
     s.distance = disc > 0.0 ? along - sqrt(disc) : sqrt(max(d2 - r2, 0.0));
     s.radiance = l.radiancePick.xyz;
     s.pdf = pick / (2.0 * kPi * oneMinusCosMax);
-  } else if (kind == kRect || kind == kDisk || kind == kCylinder) {
+  } else if (kShapeLights && (kind == kRect || kind == kDisk || kind == kCylinder)) {
     vec3 q, normal;
     vec3 position = l.positionRadius.xyz;
     if (kind == kRect) {
@@ -257,7 +258,7 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
     s.distance = d;
     s.radiance = l.radiancePick.xyz;
     s.pdf = pick * d2 / (l.emitArea.w * cosLight);
-  } else if (kind == kDistant) {
+  } else if (kDistantLights && kind == kDistant) {
     if (l.info.y != 0) {
       s.direction = l.toLightCone.xyz;
       s.pdf = pick;
@@ -268,7 +269,7 @@ bool sampleLight(vec3 p, vec3 n, float uPick, vec2 u, out LightSample s) {
     }
     s.distance = kInf;
     s.radiance = l.radiancePick.xyz;
-  } else {
+  } else if (kDomeLights) {
     if (kDomeMaps && uRest < l.misc.y) {
       s.direction = normalize(rows3T(l.domeFromWorld, domeMapSample(u)));
     } else {
@@ -319,9 +320,9 @@ vec3 escaped(vec3 p, vec3 n, vec3 wi, float pdfBsdf, bool lobes, vec3 fd, vec3 f
   for (int i = 0; i < params.counts.y; ++i) {
     Light l = lights[i];
     vec3 radiance;
-    if (l.info.x == kDome) {
+    if (kDomeLights && l.info.x == kDome) {
       radiance = domeRadiance(l, wi);
-    } else if (l.info.x == kDistant && l.info.y == 0) {
+    } else if (kDistantLights && l.info.x == kDistant && l.info.y == 0) {
       vec3 c = cross(wi, l.toLightCone.xyz);
       if (!(dot(wi, l.toLightCone.xyz) > 0.0 && dot(c, c) <= l.misc.x)) continue;
       radiance = l.radiancePick.xyz;
