@@ -236,7 +236,9 @@ struct GpuPathTracer::Impl {
                                        flag("SDG_SPHERE_LIGHTS", kGpuSphereLights) +
                                        flag("SDG_SHAPE_LIGHTS", kGpuShapeLights) +
                                        flag("SDG_DISTANT_LIGHTS", kGpuDistantLights) +
-                                       flag("SDG_DOME_LIGHTS", kGpuDomeLights),
+                                       flag("SDG_DOME_LIGHTS", kGpuDomeLights) +
+                                       flag("SDG_BASE_COLOR_MAPS", kGpuBaseColorMaps) +
+                                       flag("SDG_SURFACE_MAPS", kGpuSurfaceMaps),
                                    common.substr(versionEnd),
                                    kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
                                    kernelSource(kPtSceneGlsl, "pt_scene.glsl"),

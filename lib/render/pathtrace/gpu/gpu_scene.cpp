@@ -218,6 +218,8 @@ uint32_t GpuSceneData::featuresInUse() const {
     if (m.mapInfo[3] != 0) features |= kGpuOpacity;
     if (m.maps[3] >= 0) features |= kGpuNormalMaps;
     if (m.modes[1] != 0) features |= kGpuTriplanar;
+    if (m.maps[0] >= 0) features |= kGpuBaseColorMaps;
+    if (m.maps[1] >= 0 || m.maps[2] >= 0) features |= kGpuSurfaceMaps;
   }
   for (const GpuInstanceRecord& i : instances)
     if (i.flags[0]) features |= kGpuOpacity;

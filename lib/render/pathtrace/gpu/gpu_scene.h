@@ -56,7 +56,9 @@ enum GpuKernelFeature : uint32_t {
   kGpuShapeLights = 1u << 6,       // a rect, disk or cylinder light
   kGpuDistantLights = 1u << 7,     // a distant light
   kGpuDomeLights = 1u << 8,        // a dome light
-  kGpuAllFeatures = (1u << 9) - 1,
+  kGpuBaseColorMaps = 1u << 9,     // a material with a base colour map
+  kGpuSurfaceMaps = 1u << 10,      // a material with a roughness or metallic map
+  kGpuAllFeatures = (1u << 11) - 1,
 };
 
 class GpuSceneData {

@@ -182,8 +182,9 @@ Shaded shadeSurface(Material m, Geometry g, vec3 towardViewer) {
   bool part = m.modes.x != 0;
   Shaded s;
   s.albedo = m.baseColor.xyz;
-  // The roughness, metallic and base colour maps, in one loop (see sampleMap).
-  for (int k = 0; k < 3; ++k) {
+  // The roughness, metallic and base colour maps, in one loop (see sampleMap);
+  // the loop covers only the kinds of map the stage has.
+  for (int k = kSurfaceMaps ? 0 : 2; k < (kBaseColorMaps ? 3 : 2); ++k) {
     int map = k == 0 ? m.maps.y : (k == 1 ? m.maps.z : m.maps.x);
     if (map < 0) continue;
     vec4 t = sampleMap(m, map, g, n);
