@@ -61,6 +61,26 @@ std::string kernelSource(const char* compiledIn, const char* name) {
   return text.str();
 }
 
+// pt_common.glsl's switch for each GpuKernelFeature.
+struct FeatureSwitch {
+  const char* name;
+  GpuKernelFeature bit;
+};
+constexpr FeatureSwitch kFeatureSwitches[] = {
+    {"SDG_DOME_MAPS", kGpuDomeMaps},           {"SDG_OPACITY", kGpuOpacity},
+    {"SDG_NORMAL_MAPS", kGpuNormalMaps},       {"SDG_TRIPLANAR", kGpuTriplanar},
+    {"SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers}, {"SDG_SPHERE_LIGHTS", kGpuSphereLights},
+    {"SDG_SHAPE_LIGHTS", kGpuShapeLights},     {"SDG_DISTANT_LIGHTS", kGpuDistantLights},
+    {"SDG_DOME_LIGHTS", kGpuDomeLights},       {"SDG_BASE_COLOR_MAPS", kGpuBaseColorMaps},
+    {"SDG_SURFACE_MAPS", kGpuSurfaceMaps},
+};
+constexpr uint32_t switchedFeatures() {
+  uint32_t all = 0;
+  for (const FeatureSwitch& f : kFeatureSwitches) all |= f.bit;
+  return all;
+}
+static_assert(switchedFeatures() == kGpuAllFeatures, "every GpuKernelFeature has its switch");
+
 // SDG_GPU_TIMING=1: each frame's stages on stderr (GL timestamps), for profiling.
 bool timingRequested() {
   const char* v = std::getenv("SDG_GPU_TIMING");
@@ -226,19 +246,10 @@ struct GpuPathTracer::Impl {
     if (found != programs.end()) return found->second;
     const std::string common = kernelSource(kPtCommonGlsl, "pt_common.glsl");
     const size_t versionEnd = common.find('\n') + 1;
-    auto flag = [&](const char* name, GpuKernelFeature f) {
-      return std::string("#define ") + name + ((features & f) ? " 1\n" : " 0\n");
-    };
-    const std::string sources[] = {common.substr(0, versionEnd),
-                                   flag("SDG_DOME_MAPS", kGpuDomeMaps) + flag("SDG_OPACITY", kGpuOpacity) +
-                                       flag("SDG_NORMAL_MAPS", kGpuNormalMaps) + flag("SDG_TRIPLANAR", kGpuTriplanar) +
-                                       flag("SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers) +
-                                       flag("SDG_SPHERE_LIGHTS", kGpuSphereLights) +
-                                       flag("SDG_SHAPE_LIGHTS", kGpuShapeLights) +
-                                       flag("SDG_DISTANT_LIGHTS", kGpuDistantLights) +
-                                       flag("SDG_DOME_LIGHTS", kGpuDomeLights) +
-                                       flag("SDG_BASE_COLOR_MAPS", kGpuBaseColorMaps) +
-                                       flag("SDG_SURFACE_MAPS", kGpuSurfaceMaps),
+    std::string switches;
+    for (const FeatureSwitch& f : kFeatureSwitches)
+      switches += std::string("#define ") + f.name + ((features & f.bit) ? " 1\n" : " 0\n");
+    const std::string sources[] = {common.substr(0, versionEnd), switches,
                                    common.substr(versionEnd),
                                    kernelSource(kPtBsdfGlsl, "pt_bsdf.glsl"),
                                    kernelSource(kPtSceneGlsl, "pt_scene.glsl"),
