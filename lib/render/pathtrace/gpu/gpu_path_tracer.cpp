@@ -81,6 +81,26 @@ constexpr uint32_t switchedFeatures() {
 }
 static_assert(switchedFeatures() == kGpuAllFeatures, "every GpuKernelFeature has its switch");
 
+// The denoise and display kernels' uniforms, by index into the names
+// below: their locations are looked up once, when the program is built,
+// not by name in every pass of every frame.
+enum DenoiseUniform { kDenoiseWidth, kDenoiseHeight, kDenoiseSamples, kUseVariance, kSigmaColor, kSigmaNormal,
+                      kSigmaDepth, kPass, kIteration, kSource };
+constexpr const char* kDenoiseUniformNames[] = {"width",       "height",     "samples", "useVariance",
+                                                "sigmaColor",  "sigmaNormal", "sigmaDepth", "pass_",
+                                                "iteration",   "source"};
+enum DisplayUniform { kDisplayWidth, kDisplayHeight, kWithRadiance, kRadianceDivisor, kExposureScale };
+constexpr const char* kDisplayUniformNames[] = {"width", "height", "withRadiance", "radianceDivisor", "exposureScale"};
+static_assert(std::size(kDenoiseUniformNames) == kSource + 1 && std::size(kDisplayUniformNames) == kExposureScale + 1,
+              "one name per uniform");
+
+template <size_t N>
+std::array<GLint, N> uniformLocations(const GlComputeApi& g, GLuint program, const char* const (&names)[N]) {
+  std::array<GLint, N> at{};
+  for (size_t k = 0; k < N; ++k) at[k] = g.glGetUniformLocation(program, names[k]);
+  return at;
+}
+
 // SDG_GPU_TIMING=1: each frame's stages on stderr (GL timestamps), for profiling.
 bool timingRequested() {
   const char* v = std::getenv("SDG_GPU_TIMING");
@@ -164,12 +184,14 @@ struct GpuPathTracer::Impl {
   int samplesPerDispatch = 0;
   std::optional<DenoiseSettings> denoise;
   GLuint denoiseProgram = 0;
+  std::array<GLint, std::size(kDenoiseUniformNames)> denoiseUniforms{};
   GLuint denoiseWork = 0;  // five vec4 planes (pt_denoise.glsl); never read back
   bool denoiseWithVariance = false;
   size_t denoiseCapacity = 0;
   // The display kernel (pt_display.glsl) and, per queued frame, its
   // output on the device and its pinned, persistently mapped host copy.
   GLuint displayProgram = 0;
+  std::array<GLint, std::size(kDisplayUniformNames)> displayUniforms{};
   struct DisplaySlot {
     GLuint device = 0, pinned = 0;
     size_t bytes = 0;
@@ -279,6 +301,7 @@ struct GpuPathTracer::Impl {
     if (!denoiseProgram) {
       const char* parts[] = {kPtDenoiseGlsl};
       denoiseProgram = build(parts, 1, "denoising");
+      denoiseUniforms = uniformLocations(g, denoiseProgram, kDenoiseUniformNames);
       g.glGenBuffers(1, &denoiseWork);
     }
     const size_t pixels = size_t(width) * size_t(height), bytes = 5 * pixels * 4 * sizeof(float);
@@ -290,19 +313,19 @@ struct GpuPathTracer::Impl {
     }
     g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDenoiseWork, denoiseWork);
     g.glUseProgram(denoiseProgram);
-    auto set = [&](const char* name, int v) { g.glUniform1i(g.glGetUniformLocation(denoiseProgram, name), v); };
-    auto setF = [&](const char* name, float v) { g.glUniform1f(g.glGetUniformLocation(denoiseProgram, name), v); };
-    set("width", width);
-    set("height", height);
-    set("samples", samples);
-    set("useVariance", denoiseWithVariance ? 1 : 0);
-    setF("sigmaColor", denoise->sigmaColor);
-    setF("sigmaNormal", denoise->sigmaNormal);
-    setF("sigmaDepth", denoise->sigmaDepth);
+    auto set = [&](DenoiseUniform u, int v) { g.glUniform1i(denoiseUniforms[u], v); };
+    auto setF = [&](DenoiseUniform u, float v) { g.glUniform1f(denoiseUniforms[u], v); };
+    set(kDenoiseWidth, width);
+    set(kDenoiseHeight, height);
+    set(kDenoiseSamples, samples);
+    set(kUseVariance, denoiseWithVariance ? 1 : 0);
+    setF(kSigmaColor, denoise->sigmaColor);
+    setF(kSigmaNormal, denoise->sigmaNormal);
+    setF(kSigmaDepth, denoise->sigmaDepth);
     auto pass = [&](int which, int iteration, int source) {
-      set("pass_", which);
-      set("iteration", iteration);
-      set("source", source);
+      set(kPass, which);
+      set(kIteration, iteration);
+      set(kSource, source);
       g.glDispatchCompute(groupsX, groupsY, 1);
       g.glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     };
@@ -471,6 +494,7 @@ struct GpuPathTracer::Impl {
     if (!displayProgram) {
       const char* parts[] = {kPtDisplayGlsl};
       displayProgram = build(parts, 1, "display");
+      displayUniforms = uniformLocations(g, displayProgram, kDisplayUniformNames);
     }
     const size_t pixels = size_t(width) * size_t(height);
     const size_t bytes = pixels * 4 * (radiance ? 4 : 1);
@@ -495,12 +519,11 @@ struct GpuPathTracer::Impl {
     }
     g.glUseProgram(displayProgram);
     g.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDisplayBinding, slot.device);
-    auto set = [&](const char* name, int v) { g.glUniform1i(g.glGetUniformLocation(displayProgram, name), v); };
-    set("width", width);
-    set("height", height);
-    set("withRadiance", radiance ? 1 : 0);
-    g.glUniform1f(g.glGetUniformLocation(displayProgram, "radianceDivisor"), denoise ? 1.0f : float(settings.samples));
-    g.glUniform1f(g.glGetUniformLocation(displayProgram, "exposureScale"), exposureScale);
+    g.glUniform1i(displayUniforms[kDisplayWidth], width);
+    g.glUniform1i(displayUniforms[kDisplayHeight], height);
+    g.glUniform1i(displayUniforms[kWithRadiance], radiance ? 1 : 0);
+    g.glUniform1f(displayUniforms[kRadianceDivisor], denoise ? 1.0f : float(settings.samples));
+    g.glUniform1f(displayUniforms[kExposureScale], exposureScale);
     g.glDispatchCompute(GLuint((width + kDisplayGroup - 1) / kDisplayGroup), GLuint((height + kDisplayGroup - 1) / kDisplayGroup), 1);
     g.glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     slot.width = width;
