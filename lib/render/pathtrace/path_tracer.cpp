@@ -26,7 +26,8 @@ namespace sdg {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr int kTileSize = 16;
+constexpr int kTileSize = 16;  // a power of two: sampler tiles (sampler.h) hold whole tiles or tile them exactly
+static_assert((kTileSize & (kTileSize - 1)) == 0);
 // Domes whose maps stay loaded, as in the rasterizer: a randomizer cycling
 // through a few does not read them again.
 constexpr size_t kMaxCachedDomes = 8;
@@ -201,6 +202,7 @@ struct PtPendingLight {
 
 // A thread's wave buffers, reused tile after tile.
 struct PtWaveBuffers {
+  std::vector<SamplerTile> samplerTiles;    // the sampler tiles the tile covers (one, but at huge sample counts)
   std::vector<PixelSampler> samplers;       // the tile's pixels, row by row
   std::vector<std::array<double, 4>> sums;  // per pixel: the radiance's RGB and luminance^2 over its samples
   std::vector<PtWavePath> paths;            // per pixel: its path of the sample being traced
@@ -432,9 +434,20 @@ void PathTracer::render(const RenderList& list, size_t cameraIndex, int width, i
     auto pixelOf = [&](size_t i) {
       return size_t(y0 + int(i) / tileWidth) * size_t(width) + size_t(x0 + int(i) % tileWidth);
     };
+    // The sampler's tiles are 2^tileBits pixels a side, aligned, and so are these (a power of two): one holds
+    // this whole tile unless the sample count leaves the Morton code too few bits (over 2^24 samples).
+    const SampleLayout layout{uint32_t(settings_.samples)};
+    const int samplerTileSide = 1 << layout.tileBits, samplerTilesAcross = std::max(1, kTileSize / samplerTileSide);
+    wave.samplerTiles.resize(size_t(samplerTilesAcross * samplerTilesAcross));
+    auto samplerTileOf = [&](int x, int y) -> SamplerTile& {
+      return wave.samplerTiles[size_t(((y - y0) >> layout.tileBits) * samplerTilesAcross + ((x - x0) >> layout.tileBits))];
+    };
+    for (int y = y0; y < y0 + kTileSize; y += samplerTileSide)
+      for (int x = x0; x < x0 + kTileSize; x += samplerTileSide)
+        samplerTileOf(x, y).reset(frameSeed, uint32_t(settings_.samples), uint32_t(x), uint32_t(y));
     wave.samplers.clear();
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) wave.samplers.emplace_back(frameSeed, uint32_t(x), uint32_t(y));
+      for (int x = x0; x < x1; ++x) wave.samplers.emplace_back(samplerTileOf(x, y), uint32_t(x), uint32_t(y));
     wave.sums.assign(n, {0.0, 0.0, 0.0, 0.0});
     wave.paths.resize(n);
     // Sample by sample: a pixel's samples are summed in their order.

@@ -36,20 +36,32 @@ uint32_t nestedUniformScramble(uint32_t value, uint32_t seed) {
   return reverseBits(laineKarrasPermutation(reverseBits(value), seed));
 }
 
-PixelSampler::PixelSampler(uint64_t frameSeed, uint32_t x, uint32_t y)
-    : pixelSeed_(combine(combine(mixBits(frameSeed), x), y)) {}
+void SamplerTile::reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x, uint32_t y) {
+  layout_ = SampleLayout(samplesPerPixel);
+  tileX_ = x >> layout_.tileBits;
+  tileY_ = y >> layout_.tileBits;
+  tileSeed_ = combine(combine(mixBits(frameSeed), tileX_), tileY_);
+  cachedSlots_ = 0;
+}
 
-const PixelSampler::SlotKeys& PixelSampler::workOutSlot(uint32_t slot) {
-  SlotKeys& keys = slot < kCachedSlots ? cache_[slot] : scratch_;
-  const uint32_t seed = static_cast<uint32_t>(combine(pixelSeed_, slot));
+void SamplerTile::workOut(uint32_t slot, SlotKeys& keys) const {
+  const uint32_t seed = static_cast<uint32_t>(combine(tileSeed_, slot));
   keys.shuffle = seed;
   keys.x = static_cast<uint32_t>(combine(seed, 1));
   keys.y = static_cast<uint32_t>(combine(seed, 2));
   keys.shuffleMultiplier = oddMultiplierOf(keys.shuffle);
   keys.xMultiplier = oddMultiplierOf(keys.x);
   keys.yMultiplier = oddMultiplierOf(keys.y);
-  if (slot < kCachedSlots) cachedSlots_ = slot + 1;  // slots are drawn in order: slot == cachedSlots_
-  return keys;
+}
+
+const SamplerTile::SlotKeys& SamplerTile::workOutSlot(uint32_t slot) {
+  if (slot >= kCachedSlots) {
+    workOut(slot, scratch_);
+    return scratch_;
+  }
+  // Samplers draw slot k after slot k - 1, so this loop runs once; the cache stays a prefix whatever the order.
+  for (; cachedSlots_ <= slot; ++cachedSlots_) workOut(cachedSlots_, cache_[cachedSlots_]);
+  return cache_[slot];
 }
 
 }  // namespace sdg

@@ -1,7 +1,10 @@
 #pragma once
-// Low-discrepancy sample streams for the path tracer, one per pixel:
-// Owen-scrambled Sobol points padded in dimension pairs, after Burley 2020,
-// "Practical Hash-based Owen Scrambling".
+// Low-discrepancy sample streams for the path tracer: Owen-scrambled Sobol
+// points padded in dimension pairs (Burley 2020, "Practical Hash-based Owen
+// Scrambling"), ordered across the image as Ahmed and Wonka's Z-sampler
+// (2020, "Screen-Space Blue-Noise Diffusion of Monte Carlo Sampling Error
+// via Hierarchical Ordering of Pixels"; pbrt-v4's ZSobolSampler is the best
+// known implementation) so that neighbouring pixels share one net.
 //
 // Every draw (a next2D() pair or a next1D() value) takes the next
 // "dimension slot" of the sample. Each slot uses the first two Sobol
@@ -9,18 +12,38 @@
 // - its own shuffle of the sample index (a nested uniform scramble of the
 //   index), so slots are decorrelated from one another, and
 // - its own nested uniform (Owen) scramble of each coordinate, done with a
-//   Laine-Karras style hash, so pixels and frames are decorrelated.
-// Both scrambles keep the net structure: the samples [k 2^m, (k+1) 2^m) of a
-// slot form a (0,m,2)-net, so every elementary interval of area 2^-m holds
-// exactly one point.
+//   Laine-Karras style hash.
+// Both scrambles keep the net structure: the points of an aligned block of
+// 2^m indices [k 2^m, (k+1) 2^m) of a slot form a (0,m,2)-net, so every
+// elementary interval of area 2^-m holds exactly one point.
 //
-// A stream depends only on (frame seed, pixel x, y, sample index, slot):
-// never on the thread that draws it nor on the order pixels are drawn.
-// The GPU tracer draws the same numbers (gpu/shaders/pt_common.glsl).
+// The Z-order: sample s of pixel (x, y) is Sobol index
+//   (morton(x mod T, y mod T) << sampleBits) | s,
+// sampleBits = ceil(log2(samples per pixel)), T = 2^tileBits the side of a
+// square tile. A pixel's samples are one aligned block, and so are those of
+// every aligned 2^k x 2^k block of pixels within a tile: the block's
+// 4^k x spp points of a slot form a net too, so the errors of neighbouring
+// pixels cancel (a block mean converges like quasi-Monte Carlo; the error
+// image is blue noise, which the denoiser averages away better). The
+// scrambles' keys are hashed from (frame seed, tile, slot), not the pixel:
+// distant tiles are independent, pixels of one tile share keys. Sobol
+// indices are 32 bits: tileBits = min(6, (32 - sampleBits) / 2), so 64 x 64
+// tiles up to 2^20 samples per pixel, smaller ones beyond (a tile of one
+// pixel at 2^31). A sample count not a power of two leaves indices unused.
 //
-// Speed: a slot's hashed seeds depend on the pixel and the slot, not on the
-// sample, so a sampler works them out once for its pixel's first
-// kCachedSlots slots and every later sample reuses them; Sobol's second
+// The index shuffle flips the Morton code's bits (a nested base-2
+// scramble): of the 24 ways to hand a 2x2 quad's four sub-blocks to its
+// pixels it gives 8 (pbrt permutes whole base-4 digits, all 24; see
+// docs/rendering.md for why the base-2 one is kept).
+//
+// A stream depends only on (frame seed, samples per pixel, pixel x, y,
+// sample index, slot): never on the thread that draws it, the order pixels
+// are drawn in, nor how a frame's samples are split into batches. The GPU
+// tracer draws the same numbers (gpu/shaders/pt_common.glsl).
+//
+// Speed: a slot's keys depend on the tile and the slot, not on the pixel
+// or sample, so a SamplerTile works them out once for its first
+// kCachedSlots slots and all its pixels' samples reuse them; Sobol's second
 // dimension comes from byte tables. Both give exactly the numbers of the
 // plain formulas (sobol(), nestedUniformScramble()).
 #include <cstdint>
@@ -86,24 +109,97 @@ struct ReversedSobol1Tables {
 };
 inline constexpr ReversedSobol1Tables kReversedSobol1{};
 
+// x's bits in the even bits, y's in the odd ones (both below 2^16): the
+// Morton code, whose every aligned block of 4^k values is a 2^k x 2^k
+// block of pixels.
+constexpr uint32_t spreadBits(uint32_t v) {
+  v &= 0xffffu;
+  v = (v | (v << 8)) & 0x00ff00ffu;
+  v = (v | (v << 4)) & 0x0f0f0f0fu;
+  v = (v | (v << 2)) & 0x33333333u;
+  return (v | (v << 1)) & 0x55555555u;
+}
+constexpr uint32_t morton(uint32_t x, uint32_t y) { return spreadBits(x) | (spreadBits(y) << 1); }
+
 // 24 bits: every value is a float exactly, and the largest is below 1.
 constexpr float toUnitFloat(uint32_t fixedPoint) { return static_cast<float>(fixedPoint >> 8) * 0x1p-24f; }
 
 }  // namespace sampler_detail
 
+// Where a frame's samples sit in the 32-bit Sobol index (see the header).
+struct SampleLayout {
+  static constexpr uint32_t kMaxTileBits = 6;  // 64 x 64-pixel tiles
+  uint32_t sampleBits = 0;                     // ceil(log2(samples per pixel)), 0..32
+  uint32_t tileBits = kMaxTileBits;            // a tile is 2^tileBits pixels a side
+
+  constexpr explicit SampleLayout(uint32_t samplesPerPixel)
+      : sampleBits(samplesPerPixel <= 1 ? 0u : 32u - uint32_t(__builtin_clz(samplesPerPixel - 1))),
+        tileBits(sampleBits + 2 * kMaxTileBits <= 32 ? kMaxTileBits : (32 - sampleBits) / 2) {}
+  // The index of pixel (x, y)'s first sample; sample s is indexBase | s.
+  constexpr uint32_t indexBase(uint32_t x, uint32_t y) const {
+    const uint32_t mask = (1u << tileBits) - 1u;
+    return sampleBits >= 32 ? 0u : sampler_detail::morton(x & mask, y & mask) << sampleBits;
+  }
+};
+
+// The scramble keys of one tile's slots in one frame, shared by the tile's
+// pixel samplers: worked out the first time a slot is drawn and kept for
+// the first kCachedSlots slots.
+class SamplerTile {
+ public:
+  // A slot's keys: the seed of the index shuffle and of each coordinate's
+  // scramble, each with the odd multiplier its hash derives from it.
+  struct SlotKeys {
+    uint32_t shuffle, shuffleMultiplier;
+    uint32_t x, xMultiplier;
+    uint32_t y, yMultiplier;
+  };
+  // Slots whose keys a tile keeps: a path of the default 8 bounces draws 41.
+  static constexpr uint32_t kCachedSlots = 48;
+
+  SamplerTile() : SamplerTile(0, 1, 0, 0) {}
+  // The tile holding pixel (x, y) in a frame of `samplesPerPixel` samples.
+  SamplerTile(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x, uint32_t y) {
+    reset(frameSeed, samplesPerPixel, x, y);
+  }
+  // The same, reusing this object (no allocation).
+  void reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x, uint32_t y);
+
+  const SampleLayout& layout() const { return layout_; }
+  bool holds(uint32_t x, uint32_t y) const {
+    return (x >> layout_.tileBits) == tileX_ && (y >> layout_.tileBits) == tileY_;
+  }
+  const SlotKeys& keys(uint32_t slot) { return slot < cachedSlots_ ? cache_[slot] : workOutSlot(slot); }
+
+ private:
+  const SlotKeys& workOutSlot(uint32_t slot);
+  void workOut(uint32_t slot, SlotKeys& keys) const;
+
+  SampleLayout layout_{1};
+  uint32_t tileX_ = 0, tileY_ = 0;
+  uint64_t tileSeed_ = 0;
+  uint32_t cachedSlots_ = 0;  // slots [0, cachedSlots_) of cache_ are worked out
+  SlotKeys scratch_;          // a slot beyond the cache
+  SlotKeys cache_[kCachedSlots];
+};
+
+// One pixel's stream: its samples' indices and the slot drawn next; the keys
+// are its tile's, which must outlive it.
 class PixelSampler {
  public:
-  PixelSampler(uint64_t frameSeed, uint32_t x, uint32_t y);
+  // Pixel (x, y), which `tile` holds.
+  PixelSampler(SamplerTile& tile, uint32_t x, uint32_t y) : tile_(&tile), indexBase_(tile.layout().indexBase(x, y)) {}
 
-  // Starts sample `index` of this pixel; the next draw is its first slot.
+  // Starts sample `index` (below the frame's samples per pixel) of this
+  // pixel; the next draw is its first slot.
   void startSample(uint32_t index) {
-    reversedIndex_ = sampler_detail::reverseBits(index);
+    reversedIndex_ = sampler_detail::reverseBits(indexBase_ | index);
     slot_ = 0;
   }
   // The next slot's two coordinates, each in [0, 1).
   Vec2f next2D() {
     using namespace sampler_detail;
-    const SlotKeys& keys = nextSlot();
+    const SamplerTile::SlotKeys& keys = tile_->keys(slot_++);
     const uint32_t shuffled = shuffledIndex(keys);
     return {toUnitFloat(reverseBits(laineKarrasPermutation(shuffled, keys.x, keys.xMultiplier))),
             toUnitFloat(reverseBits(laineKarrasPermutation(kReversedSobol1(shuffled), keys.y, keys.yMultiplier)))};
@@ -111,28 +207,11 @@ class PixelSampler {
   // The next slot's first coordinate, in [0, 1).
   float next1D() {
     using namespace sampler_detail;
-    const SlotKeys& keys = nextSlot();
+    const SamplerTile::SlotKeys& keys = tile_->keys(slot_++);
     return toUnitFloat(reverseBits(laineKarrasPermutation(shuffledIndex(keys), keys.x, keys.xMultiplier)));
   }
 
-  // Slots whose seeds a sampler keeps: a path of the default 8 bounces
-  // draws 41.
-  static constexpr uint32_t kCachedSlots = 48;
-
  private:
-  // A slot's scramble keys: the seed of the index shuffle and of each
-  // coordinate's scramble, each with the odd multiplier its hash derives
-  // from it.
-  struct SlotKeys {
-    uint32_t shuffle, shuffleMultiplier;
-    uint32_t x, xMultiplier;
-    uint32_t y, yMultiplier;
-  };
-  const SlotKeys& nextSlot() {
-    const uint32_t slot = slot_++;
-    return slot < cachedSlots_ ? cache_[slot] : workOutSlot(slot);
-  }
-  const SlotKeys& workOutSlot(uint32_t slot);
   // Scrambling the index (not just the values) shuffles which point each
   // sample gets, so two slots of one sample are not the same point twice;
   // it maps every aligned block of 2^m indices onto another such block, so
@@ -141,17 +220,15 @@ class PixelSampler {
   //   shuffled = nestedUniformScramble(index, shuffle) = rev(LK(rev(index), shuffle))
   //   x = nestedUniformScramble(sobol(shuffled, 0), x) = rev(LK(shuffled, x)), as sobol(., 0) = rev()
   //   y = nestedUniformScramble(sobol(shuffled, 1), y) = rev(LK(rev(sobol(shuffled, 1)), y))
-  uint32_t shuffledIndex(const SlotKeys& keys) const {
+  uint32_t shuffledIndex(const SamplerTile::SlotKeys& keys) const {
     return sampler_detail::reverseBits(
         sampler_detail::laineKarrasPermutation(reversedIndex_, keys.shuffle, keys.shuffleMultiplier));
   }
 
-  uint64_t pixelSeed_;
+  SamplerTile* tile_;
+  uint32_t indexBase_;
   uint32_t reversedIndex_ = 0;
   uint32_t slot_ = 0;
-  uint32_t cachedSlots_ = 0;  // slots [0, cachedSlots_) of cache_ are worked out
-  SlotKeys scratch_;          // a slot beyond the cache
-  SlotKeys cache_[kCachedSlots];
 };
 
 // The building blocks, exposed for the tests.

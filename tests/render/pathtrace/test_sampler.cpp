@@ -1,7 +1,8 @@
-// The path tracer's per-pixel sample streams: Owen-scrambled Sobol pairs
-// (Burley 2020). Deterministic, in [0, 1), stratified as a (0,2)-sequence,
-// better than random on smooth integrands, and decorrelated across pixels,
-// frames and slots.
+// The path tracer's sample streams: Owen-scrambled Sobol pairs (Burley
+// 2020) in the Z-sampler's order (Ahmed and Wonka 2020). Deterministic, in
+// [0, 1), stratified as a (0,2)-sequence per pixel and over every aligned
+// block of pixels, better than random on smooth integrands, and
+// decorrelated across tiles, frames and slots.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -17,9 +18,12 @@ using namespace sdg;
 
 namespace {
 
-// The points of one slot (the `slot`-th draw) of samples [first, first + count).
-std::vector<Vec2f> slotPoints(uint64_t frameSeed, uint32_t x, uint32_t y, int slot, uint32_t first, uint32_t count) {
-  PixelSampler sampler(frameSeed, x, y);
+// The points of one slot (the `slot`-th draw) of samples [first, first + count)
+// of pixel (x, y) in a frame of `spp` samples per pixel.
+std::vector<Vec2f> slotPoints(uint64_t frameSeed, uint32_t spp, uint32_t x, uint32_t y, int slot, uint32_t first,
+                              uint32_t count) {
+  SamplerTile tile(frameSeed, spp, x, y);
+  PixelSampler sampler(tile, x, y);
   std::vector<Vec2f> points;
   for (uint32_t i = first; i < first + count; ++i) {
     sampler.startSample(i);
@@ -29,20 +33,33 @@ std::vector<Vec2f> slotPoints(uint64_t frameSeed, uint32_t x, uint32_t y, int sl
   return points;
 }
 
-// Every elementary interval of area 1/count (2^a by 2^b cells, a + b =
-// log2(count)) holds exactly one point: the (0,m,2)-net property.
+// One slot's points of every sample of the side x side pixels from (x0, y0).
+std::vector<Vec2f> blockPoints(uint64_t frameSeed, uint32_t spp, uint32_t x0, uint32_t y0, uint32_t side, int slot) {
+  std::vector<Vec2f> points;
+  for (uint32_t y = y0; y < y0 + side; ++y)
+    for (uint32_t x = x0; x < x0 + side; ++x) {
+      const std::vector<Vec2f> pixel = slotPoints(frameSeed, spp, x, y, slot, 0, spp);
+      points.insert(points.end(), pixel.begin(), pixel.end());
+    }
+  return points;
+}
+
+// The most points in one elementary interval of area 2^-m (2^a by 2^b
+// cells, a + b = m). 1 for 2^m points: the (0,m,2)-net property.
+int mostInAnInterval(const std::vector<Vec2f>& points, int m) {
+  int most = 0;
+  for (int a = 0; a <= m; ++a) {
+    const int columns = 1 << a, rows = 1 << (m - a);
+    std::vector<int> counts(size_t(1) << m, 0);
+    for (const Vec2f& p : points)
+      most = std::max(most, ++counts[size_t(int(p.y() * float(rows)) * columns + int(p.x() * float(columns)))]);
+  }
+  return most;
+}
 bool isZeroNet(const std::vector<Vec2f>& points) {
   int m = 0;
   while ((size_t{1} << m) < points.size()) ++m;
-  for (int a = 0; a <= m; ++a) {
-    const int columns = 1 << a, rows = 1 << (m - a);
-    std::vector<int> counts(points.size(), 0);
-    for (const Vec2f& p : points)
-      ++counts[size_t(int(p.y() * float(rows)) * columns + int(p.x() * float(columns)))];
-    for (int c : counts)
-      if (c != 1) return false;
-  }
-  return true;
+  return (size_t{1} << m) == points.size() && mostInAnInterval(points, m) == 1;
 }
 
 double correlation(const std::vector<double>& a, const std::vector<double>& b) {
@@ -62,6 +79,19 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
 double smooth(double x, double y) { return std::exp(x) * std::sin(3.0 * y + 0.5); }
 const double kSmoothIntegral = (std::exp(1.0) - 1.0) * (std::cos(0.5) - std::cos(3.5)) / 3.0;
 
+// Each pixel's error on the smooth integral (slot 0, `spp` samples) over a
+// width x height image from (0, 0).
+std::vector<double> pixelErrors(uint64_t frameSeed, uint32_t spp, uint32_t width, uint32_t height) {
+  std::vector<double> error;
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      double sum = 0;
+      for (const Vec2f& p : slotPoints(frameSeed, spp, x, y, 0, 0, spp)) sum += smooth(p.x(), p.y());
+      error.push_back(sum / spp - kSmoothIntegral);
+    }
+  return error;
+}
+
 }  // namespace
 
 TEST_CASE("sampler: unscrambled Sobol matches Joe-Kuo's first two dimensions", "[pathtrace][sampler]") {
@@ -75,11 +105,46 @@ TEST_CASE("sampler: unscrambled Sobol matches Joe-Kuo's first two dimensions", "
   }
 }
 
-TEST_CASE("sampler: values lie in the unit interval and streams depend only on seed, pixel, index and slot",
+TEST_CASE("sampler: the Z-order fits a tile's pixels and samples in 32-bit indices for any sample count",
+          "[pathtrace][sampler]") {
+  struct Case {
+    uint32_t spp, sampleBits, tileBits;
+  };
+  for (const Case& c : {Case{1, 0, 6}, Case{2, 1, 6}, Case{3, 2, 6}, Case{4, 2, 6}, Case{5, 3, 6}, Case{1024, 10, 6},
+                        Case{1u << 20, 20, 6}, Case{(1u << 20) + 1, 21, 5}, Case{1u << 24, 24, 4},
+                        Case{1u << 31, 31, 0}, Case{0xffffffffu, 32, 0}}) {
+    INFO("samples " << c.spp);
+    const SampleLayout layout(c.spp);
+    CHECK(layout.sampleBits == c.sampleBits);
+    CHECK(layout.tileBits == c.tileBits);
+    CHECK(layout.sampleBits + 2 * layout.tileBits <= 32);
+    // The tile's last pixel's last sample is the largest index; the tile's
+    // pixels' ranges do not overlap, and another tile's pixel starts over.
+    const uint32_t last = (1u << layout.tileBits) - 1;
+    CHECK(uint64_t(layout.indexBase(last, last)) + (c.spp - 1) < (uint64_t{1} << 32));
+    if (layout.tileBits > 0) {
+      CHECK(layout.indexBase(1, 0) == uint32_t(uint64_t{1} << layout.sampleBits));
+      CHECK(layout.indexBase(0, 1) == uint32_t(uint64_t{2} << layout.sampleBits));
+    }
+    CHECK(layout.indexBase(last + 1, last + 1) == 0);
+  }
+  // Morton order: each aligned 2^k x 2^k block of pixels is one aligned block of 4^k codes.
+  const SampleLayout layout(1);
+  std::vector<uint32_t> codes;
+  for (uint32_t y = 8; y < 16; ++y)
+    for (uint32_t x = 24; x < 32; ++x) codes.push_back(layout.indexBase(x, y));
+  std::sort(codes.begin(), codes.end());
+  CHECK(codes.front() % 64 == 0);
+  CHECK(codes.back() == codes.front() + 63);
+  CHECK(std::adjacent_find(codes.begin(), codes.end()) == codes.end());
+}
+
+TEST_CASE("sampler: values lie in the unit interval and streams depend only on seed, samples, pixel, index and slot",
           "[pathtrace][sampler]") {
   for (uint32_t y = 0; y < 4; ++y)
     for (uint32_t x = 0; x < 4; ++x) {
-      PixelSampler a(42, x, y), b(42, x, y);
+      SamplerTile tileA(42, 64, x, y), tileB(42, 64, x, y);
+      PixelSampler a(tileA, x, y), b(tileB, x, y);
       for (uint32_t i = 0; i < 64; ++i) {
         a.startSample(i);
         b.startSample(i);
@@ -94,7 +159,8 @@ TEST_CASE("sampler: values lie in the unit interval and streams depend only on s
       }
     }
   // Jumping straight to a sample gives what drawing every earlier one did.
-  PixelSampler walked(7, 3, 9), jumped(7, 3, 9);
+  SamplerTile tile(7, 128, 3, 9);
+  PixelSampler walked(tile, 3, 9), jumped(tile, 3, 9);
   for (uint32_t i = 0; i <= 100; ++i) {
     walked.startSample(i);
     walked.next2D();
@@ -102,33 +168,60 @@ TEST_CASE("sampler: values lie in the unit interval and streams depend only on s
   walked.startSample(77);
   jumped.startSample(77);
   CHECK((walked.next2D() == jumped.next2D()));
+  // Pixels sharing one tile's keys, drawn interleaved, 60 slots deep (past
+  // the cached keys): what each draws alone.
+  SamplerTile shared(7, 4, 5, 6);
+  PixelSampler first(shared, 5, 6), second(shared, 6, 6);
+  std::vector<float> together[2];
+  for (uint32_t i = 0; i < 4; ++i) {
+    first.startSample(i);
+    second.startSample(i);
+    for (int slot = 0; slot < 60; ++slot) {
+      together[0].push_back(first.next1D());
+      if (slot % 2) together[1].push_back(second.next1D());
+      else together[1].push_back(second.next2D().y());
+    }
+  }
+  for (uint32_t pixel = 0; pixel < 2; ++pixel) {
+    SamplerTile own(7, 4, 5 + pixel, 6);
+    PixelSampler alone(own, 5 + pixel, 6);
+    std::vector<float> drawn;
+    for (uint32_t i = 0; i < 4; ++i) {
+      alone.startSample(i);
+      for (int slot = 0; slot < 60; ++slot)
+        drawn.push_back(pixel == 0 || slot % 2 ? alone.next1D() : alone.next2D().y());
+    }
+    CHECK((drawn == together[pixel]));
+  }
   // Drawn on other threads, in another order: the same streams.
   std::vector<std::vector<Vec2f>> sequential, threaded(8);
-  for (uint32_t pixel = 0; pixel < 8; ++pixel) sequential.push_back(slotPoints(3, pixel, 1, 2, 0, 32));
+  for (uint32_t pixel = 0; pixel < 8; ++pixel) sequential.push_back(slotPoints(3, 32, pixel, 1, 2, 0, 32));
   {
     std::vector<std::jthread> workers;
     for (uint32_t pixel = 8; pixel-- > 0;)
-      workers.emplace_back([&threaded, pixel] { threaded[pixel] = slotPoints(3, pixel, 1, 2, 0, 32); });
+      workers.emplace_back([&threaded, pixel] { threaded[pixel] = slotPoints(3, 32, pixel, 1, 2, 0, 32); });
   }
   CHECK((threaded == sequential));
-  // Another frame, another pixel: another stream.
-  CHECK((slotPoints(1, 0, 0, 0, 0, 4) != slotPoints(2, 0, 0, 0, 0, 4)));
-  CHECK((slotPoints(1, 0, 0, 0, 0, 4) != slotPoints(1, 1, 0, 0, 0, 4)));
-  CHECK((slotPoints(1, 0, 0, 0, 0, 4) != slotPoints(1, 0, 1, 0, 0, 4)));
+  // Another frame, pixel or sample count: another stream.
+  CHECK((slotPoints(1, 4, 0, 0, 0, 0, 4) != slotPoints(2, 4, 0, 0, 0, 0, 4)));
+  CHECK((slotPoints(1, 4, 0, 0, 0, 0, 4) != slotPoints(1, 4, 1, 0, 0, 0, 4)));
+  CHECK((slotPoints(1, 4, 0, 0, 0, 0, 4) != slotPoints(1, 4, 0, 1, 0, 0, 4)));
+  CHECK((slotPoints(1, 4, 1, 0, 0, 0, 4) != slotPoints(1, 8, 1, 0, 0, 0, 4)));
 }
 
-TEST_CASE("sampler: every slot's power-of-two blocks are (0,m,2)-nets after scrambling", "[pathtrace][sampler]") {
+TEST_CASE("sampler: each pixel's power-of-two blocks of samples are (0,m,2)-nets", "[pathtrace][sampler]") {
   for (uint32_t pixel = 0; pixel < 6; ++pixel)
     for (int slot = 0; slot < 6; ++slot) {
       INFO("pixel " << pixel << " slot " << slot);
       // 256 samples: every 1x256, 2x128, ..., 16x16, ..., 256x1 grid.
-      CHECK(isZeroNet(slotPoints(5, pixel, 2 * pixel, slot, 0, 256)));
+      CHECK(isZeroNet(slotPoints(5, 256, 7 * pixel, 2 * pixel, slot, 0, 256)));
       // Progressive: the first 64 and the next block of 64 on their own.
-      CHECK(isZeroNet(slotPoints(5, pixel, 2 * pixel, slot, 0, 64)));
-      CHECK(isZeroNet(slotPoints(5, pixel, 2 * pixel, slot, 64, 64)));
+      CHECK(isZeroNet(slotPoints(5, 256, 7 * pixel, 2 * pixel, slot, 0, 64)));
+      CHECK(isZeroNet(slotPoints(5, 256, 7 * pixel, 2 * pixel, slot, 64, 64)));
     }
   // A 1D slot: 256 values, one in each 1/256 interval.
-  PixelSampler sampler(5, 1, 1);
+  SamplerTile tile(5, 256, 1, 1);
+  PixelSampler sampler(tile, 1, 1);
   std::vector<int> counts(256, 0);
   for (uint32_t i = 0; i < 256; ++i) {
     sampler.startSample(i);
@@ -138,17 +231,40 @@ TEST_CASE("sampler: every slot's power-of-two blocks are (0,m,2)-nets after scra
   CHECK(std::count(counts.begin(), counts.end(), 1) == 256);
 }
 
+TEST_CASE("sampler: the samples of every aligned block of pixels form a (0,m,2)-net", "[pathtrace][sampler]") {
+  for (int slot = 0; slot < 5; ++slot) {
+    INFO("slot " << slot);
+    // 4 x 4 pixels x 4 samples: 64 points, one in each elementary interval of area 1/64.
+    CHECK(isZeroNet(blockPoints(9, 4, 0, 0, 4, slot)));
+    CHECK(isZeroNet(blockPoints(9, 4, 36, 12, 4, slot)));
+    CHECK(isZeroNet(blockPoints(9, 4, 64 + 20, 128 + 4, 4, slot)));  // in another tile
+    // 2 x 2 pixels x 16 samples, 8 x 8 pixels x 1 sample, 16 x 16 pixels x 2 samples.
+    CHECK(isZeroNet(blockPoints(3, 16, 10, 6, 2, slot)));
+    CHECK(isZeroNet(blockPoints(3, 1, 8, 48, 8, slot)));
+    CHECK(isZeroNet(blockPoints(3, 2, 16, 32, 16, slot)));
+    // 3 samples a pixel: a pixel takes 3 of its block of 4 indices, so a
+    // block's points are part of a net (at most one per interval of 1/64).
+    CHECK(mostInAnInterval(blockPoints(3, 3, 4, 4, 4, slot), 6) == 1);
+  }
+  // A block not aligned to the Morton order is no net: it mixes points of
+  // different aligned blocks (the property is the order's, not chance).
+  int netsOffGrid = 0;
+  for (int slot = 0; slot < 5; ++slot) netsOffGrid += isZeroNet(blockPoints(9, 4, 2, 2, 4, slot));
+  CHECK(netsOffGrid < 5);
+  // Across a tile's edge the blocks are independent: no net either.
+  int netsAcrossTiles = 0;
+  for (int slot = 0; slot < 5; ++slot) netsAcrossTiles += isZeroNet(blockPoints(9, 4, 62, 0, 4, slot));
+  CHECK(netsAcrossTiles < 5);
+}
+
 TEST_CASE("sampler: a smooth 2D integral converges much faster than with random points", "[pathtrace][sampler]") {
   constexpr uint32_t kSamples = 256;
   constexpr uint32_t kPixels = 64;
   Rng rng(11, 3);
   double sobolError = 0, randomError = 0;
   for (uint32_t pixel = 0; pixel < kPixels; ++pixel) {
-    PixelSampler sampler(3, pixel, 5);
     double sobolSum = 0, randomSum = 0;
-    for (uint32_t i = 0; i < kSamples; ++i) {
-      sampler.startSample(i);
-      const Vec2f p = sampler.next2D();
+    for (const Vec2f& p : slotPoints(3, kSamples, pixel, 5, 0, 0, kSamples)) {
       sobolSum += smooth(p.x(), p.y());
       randomSum += smooth(rng.uniform01(), rng.uniform01());
     }
@@ -159,73 +275,115 @@ TEST_CASE("sampler: a smooth 2D integral converges much faster than with random 
   CHECK(sobolError < randomError / 3.0);
 }
 
-TEST_CASE("sampler: pixels and slots are decorrelated", "[pathtrace][sampler]") {
-  // Per-pixel estimates of the smooth integral: neighbours' errors are
-  // independent (the scramble, not the net, decides them).
-  constexpr uint32_t kSide = 48;
-  std::vector<double> error(kSide * kSide);
-  for (uint32_t y = 0; y < kSide; ++y)
-    for (uint32_t x = 0; x < kSide; ++x) {
+TEST_CASE("sampler: neighbouring pixels' errors cancel in block means (blue noise)", "[pathtrace][sampler]") {
+  // 4 samples a pixel over a 64 x 64 tile: each pixel's error is as large as
+  // with independent streams, but the means of aligned 8 x 8 blocks (256
+  // points, one net) have far smaller errors than 64 independent pixels'
+  // means would (their error's rms / 8).
+  constexpr uint32_t kSide = 64, kBlock = 8, kSpp = 4;
+  const std::vector<double> error = pixelErrors(17, kSpp, kSide, kSide);
+  double pixelSquares = 0;
+  for (double e : error) pixelSquares += e * e;
+  const double pixelRms = std::sqrt(pixelSquares / double(error.size()));
+  double blockSquares = 0;
+  for (uint32_t by = 0; by < kSide; by += kBlock)
+    for (uint32_t bx = 0; bx < kSide; bx += kBlock) {
       double sum = 0;
-      for (const Vec2f& p : slotPoints(9, x, y, 0, 0, 16)) sum += smooth(p.x(), p.y());
-      error[y * kSide + x] = sum / 16 - kSmoothIntegral;
+      for (uint32_t y = by; y < by + kBlock; ++y)
+        for (uint32_t x = bx; x < bx + kBlock; ++x) sum += error[y * kSide + x];
+      blockSquares += (sum / (kBlock * kBlock)) * (sum / (kBlock * kBlock));
     }
-  std::vector<double> left, right, up, down;
-  for (uint32_t y = 0; y + 1 < kSide; ++y)
-    for (uint32_t x = 0; x + 1 < kSide; ++x) {
+  const double blockRms = std::sqrt(blockSquares / double((kSide / kBlock) * (kSide / kBlock)));
+  INFO("pixel error rms " << pixelRms << ", 8 x 8 block mean's " << blockRms << " (independent pixels: "
+                          << pixelRms / kBlock << ")");
+  CHECK(blockRms < pixelRms / kBlock / 4);
+  // Side by side in one 2 x 2 quad, pixels' errors are anti-correlated.
+  std::vector<double> left, right, top, bottom;
+  for (uint32_t y = 0; y < kSide; y += 2)
+    for (uint32_t x = 0; x < kSide; x += 2) {
       left.push_back(error[y * kSide + x]), right.push_back(error[y * kSide + x + 1]);
-      up.push_back(error[y * kSide + x]), down.push_back(error[(y + 1) * kSide + x]);
+      top.push_back(error[y * kSide + x]), bottom.push_back(error[(y + 1) * kSide + x]);
     }
-  CHECK(std::abs(correlation(left, right)) < 0.1);
-  CHECK(std::abs(correlation(up, down)) < 0.1);
+  INFO("quads' correlation: across " << correlation(left, right) << ", down " << correlation(top, bottom));
+  CHECK(correlation(left, right) < -0.1);
+  CHECK(correlation(top, bottom) < -0.1);
+}
 
-  // Slots of one pixel: the first coordinates of slot 0 and slot 1 over 256
-  // samples are independent (mean r^2 near 1/256, as for random pairs), not
-  // the same net twice.
-  double meanSquaredR = 0;
+TEST_CASE("sampler: tiles, frames and slots are decorrelated", "[pathtrace][sampler]") {
+  // The same pixel of many tiles (and the same pixel of two frames): errors
+  // independent (|r| within a few times 1/sqrt(n) of 0), and pixels either
+  // side of a tile's edge too.
+  constexpr uint32_t kTiles = 400;
+  std::vector<double> here, next, otherFrame, edgeLeft, edgeRight;
+  auto error = [](uint64_t seed, uint32_t x, uint32_t y) {
+    double sum = 0;
+    for (const Vec2f& p : slotPoints(seed, 4, x, y, 1, 0, 4)) sum += smooth(p.x(), p.y());
+    return sum / 4 - kSmoothIntegral;
+  };
+  for (uint32_t t = 0; t < kTiles; ++t) {
+    const uint32_t x = 64 * (t % 20) + 5, y = 64 * (t / 20) + 9;
+    here.push_back(error(21, x, y));
+    next.push_back(error(21, x + 64, y));
+    otherFrame.push_back(error(22, x, y));
+    edgeLeft.push_back(error(21, x + 58, y));
+    edgeRight.push_back(error(21, x + 59, y));
+  }
+  INFO("correlation: next tile " << correlation(here, next) << ", next frame " << correlation(here, otherFrame)
+                                 << ", across a tile's edge " << correlation(edgeLeft, edgeRight));
+  CHECK(std::abs(correlation(here, next)) < 0.15);
+  CHECK(std::abs(correlation(here, otherFrame)) < 0.15);
+  CHECK(std::abs(correlation(edgeLeft, edgeRight)) < 0.15);
+
+  // Slots of one pixel, and of one block: the first coordinates of slot 0
+  // and slot 1 over 256 samples are independent (mean r^2 near 1/256, as
+  // for random pairs), not the same net twice.
+  double pixelR2 = 0, blockR2 = 0;
   constexpr int kPixels = 64;
   for (uint32_t pixel = 0; pixel < kPixels; ++pixel) {
-    PixelSampler sampler(9, pixel, 0);
-    std::vector<double> first, second;
-    for (uint32_t i = 0; i < 256; ++i) {
-      sampler.startSample(i);
-      first.push_back(sampler.next2D().x());
-      second.push_back(sampler.next2D().x());
-    }
-    const double r = correlation(first, second);
-    meanSquaredR += r * r / kPixels;
+    const std::vector<Vec2f> p0 = slotPoints(9, 256, pixel, 0, 0, 0, 256), p1 = slotPoints(9, 256, pixel, 0, 1, 0, 256);
+    const std::vector<Vec2f> b0 = blockPoints(9, 16, 4 * pixel, 0, 4, 0), b1 = blockPoints(9, 16, 4 * pixel, 0, 4, 1);
+    std::vector<double> x0, x1, bx0, bx1;
+    for (size_t i = 0; i < p0.size(); ++i) x0.push_back(p0[i].x()), x1.push_back(p1[i].x());
+    for (size_t i = 0; i < b0.size(); ++i) bx0.push_back(b0[i].x()), bx1.push_back(b1[i].x());
+    pixelR2 += correlation(x0, x1) * correlation(x0, x1) / kPixels;
+    blockR2 += correlation(bx0, bx1) * correlation(bx0, bx1) / kPixels;
   }
-  CHECK(meanSquaredR < 3.0 / 256.0);
+  INFO("mean r^2 of slots 0 and 1: in a pixel " << pixelR2 << ", in a 4 x 4 block " << blockR2);
+  CHECK(pixelR2 < 3.0 / 256.0);
+  CHECK(blockR2 < 3.0 / 256.0);
 }
 
 TEST_CASE("sampler: the streams' numbers are pinned (the GPU tracer's GLSL port draws the same)",
           "[pathtrace][sampler]") {
   // An FNV-1a hash of the bits of mixed 1D and 2D draws, 60 slots a sample
-  // (beyond the sampler's cached slots), jumps in the sample index, three
-  // frame seeds. A change here changes every path-traced frame and must be
-  // made in gpu/shaders/pt_common.glsl too.
+  // (beyond the cached slots), jumps in the sample index, pixels of several
+  // tiles, three frame seeds, three sample counts. A change here changes
+  // every path-traced frame and must be made in gpu/shaders/pt_common.glsl
+  // too.
   uint64_t hash = 0xcbf29ce484222325ull;
   auto add = [&hash](float v) {
     uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     for (int k = 0; k < 4; ++k) hash = (hash ^ ((bits >> (8 * k)) & 0xffu)) * 0x100000001b3ull;
   };
-  for (uint64_t seed : {uint64_t{0}, uint64_t{10}, uint64_t{0xfedcba9876543210ull}})
-    for (uint32_t y = 0; y < 5; ++y)
-      for (uint32_t x = 0; x < 5; ++x) {
-        PixelSampler sampler(seed, x * 37, y * 101);
-        for (uint32_t i = 0; i < 70; ++i) {
-          sampler.startSample(i * (i % 7 == 6 ? 977u : 1u));
-          for (int slot = 0; slot < 60; ++slot) {
-            if (slot % 3 == 1) {
-              add(sampler.next1D());
-            } else {
-              const Vec2f p = sampler.next2D();
-              add(p.x());
-              add(p.y());
+  for (uint32_t spp : {70u * 977u, 70u, 1u << 26})
+    for (uint64_t seed : {uint64_t{0}, uint64_t{10}, uint64_t{0xfedcba9876543210ull}})
+      for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 0; x < 5; ++x) {
+          SamplerTile tile(seed, spp, x * 37, y * 101);
+          PixelSampler sampler(tile, x * 37, y * 101);
+          for (uint32_t i = 0; i < 70; ++i) {
+            sampler.startSample(spp == 70 ? i : i * (i % 7 == 6 ? 977u : 1u));
+            for (int slot = 0; slot < 60; ++slot) {
+              if (slot % 3 == 1) {
+                add(sampler.next1D());
+              } else {
+                const Vec2f p = sampler.next2D();
+                add(p.x());
+                add(p.y());
+              }
             }
           }
         }
-      }
-  CHECK(hash == 0x635d65b5de8d53e7ull);
+  CHECK(hash == 0xf95f07e17e536b7full);
 }

@@ -18,6 +18,7 @@
 #include "render/camera_math.h"
 #include "render/pathtrace/gpu/gl_compute.h"
 #include "render/pathtrace/gpu/gpu_scene.h"
+#include "render/pathtrace/sampler.h"
 
 // The kernel's parts, compiled in (lib/CMakeLists.txt's sdg_embed).
 extern const char kPtCommonGlsl[];
@@ -115,8 +116,9 @@ struct ParamsHeader {
   uint32_t seed[4];
   int32_t dome[4];
   int32_t domeTables[4];
+  uint32_t sampling[4];
 };
-static_assert(sizeof(ParamsHeader) == 192, "the kernel's Params header is 192 bytes");
+static_assert(sizeof(ParamsHeader) == 208, "the kernel's Params header is 208 bytes");
 
 struct FilmPixel {  // pt_common.glsl's FilmPixel
   float sum[4], albedo[4], normalDepth[4];
@@ -432,6 +434,11 @@ struct GpuPathTracer::Impl {
     std::copy(scene.domeTables, scene.domeTables + 4, header.domeTables);
     header.size[0] = width;
     header.size[1] = height;
+    // The frame's samples, not a dispatch's, place each sample in the stream: any split draws the same numbers.
+    const SampleLayout layout{uint32_t(samples)};
+    header.sampling[0] = uint32_t(samples);
+    header.sampling[1] = layout.sampleBits;
+    header.sampling[2] = layout.tileBits;
     uploadScene(header);
     const size_t pixels = size_t(width) * size_t(height);
     if (capacity[kFilm] < pixels * sizeof(FilmPixel)) {

@@ -40,6 +40,7 @@ layout(std430, binding = 0) readonly buffer Params {
   uvec4 seed;        // frame seed (low, high), top-level root item, label pass (1: write the labels)
   ivec4 dome;        // width, height (0: no map), first texel (uint words in `texels`), pick cdf offset
   ivec4 domeTables;  // offsets: row cdf, column cdfs, row cosines, texel solid angles
+  uvec4 sampling;    // the frame's samples per pixel, its SampleLayout (sampler.h: sample bits, tile bits), 0
   float tables[];
 } params;
 
@@ -111,25 +112,41 @@ uint sobol(uint index, int dimension) {
 }
 float toUnitFloat(uint fixedPoint) { return float(fixedPoint >> 8) * (1.0 / 16777216.0); }
 
-// PixelSampler: the same stream as the CPU's for (seed, x, y, sample, slot).
+// sampler.h's Morton code: x's bits in the even bits, y's in the odd ones.
+uint spreadBits(uint v) {
+  v &= 0xffffu;
+  v = (v | (v << 8)) & 0x00ff00ffu;
+  v = (v | (v << 4)) & 0x0f0f0f0fu;
+  v = (v | (v << 2)) & 0x33333333u;
+  return (v | (v << 1)) & 0x55555555u;
+}
+
+// sampler.h's PixelSampler with its SamplerTile's keys: the same stream as
+// the CPU's for (seed, samples per pixel, x, y, sample, slot). The keys are
+// hashed at each draw (a per-invocation cache of them went to local memory:
+// docs/performance.md); the tile's seed and the pixel's first index once.
 struct Sampler {
-  uvec2 pixelSeed;
+  uvec2 tileSeed;
+  uint indexBase;  // the pixel's first Sobol index: its Morton code in the tile, above the sample bits
   uint index;
   uint slot;
 };
-Sampler pixelSampler(uvec2 frameSeed, uint x, uint y) {
+// bits: sampler.h's SampleLayout (sample bits, tile bits) for the frame's samples per pixel.
+Sampler pixelSampler(uvec2 frameSeed, uint x, uint y, uvec2 bits) {
   Sampler s;
-  s.pixelSeed = combine(combine(mixBits(frameSeed), uvec2(x, 0u)), uvec2(y, 0u));
+  s.tileSeed = combine(combine(mixBits(frameSeed), uvec2(x >> bits.y, 0u)), uvec2(y >> bits.y, 0u));
+  uint mask = (1u << bits.y) - 1u;
+  s.indexBase = bits.x >= 32u ? 0u : (spreadBits(x & mask) | (spreadBits(y & mask) << 1)) << bits.x;
   s.index = 0u;
   s.slot = 0u;
   return s;
 }
 void startSample(inout Sampler s, uint index) {
-  s.index = index;
+  s.index = s.indexBase | index;
   s.slot = 0u;
 }
 uint slotSeed(inout Sampler s) {
-  uint seed = combine(s.pixelSeed, uvec2(s.slot, 0u)).x;
+  uint seed = combine(s.tileSeed, uvec2(s.slot, 0u)).x;
   s.slot++;
   return seed;
 }

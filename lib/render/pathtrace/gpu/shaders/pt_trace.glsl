@@ -45,7 +45,7 @@ void main() {
     px.normalDepth = vec4(0.0, 0.0, 0.0, kInf);
     px.rays = uvec4(0u);
   }
-  Sampler sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y);
+  Sampler sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y, params.sampling.yz);
   int maxBounces = params.counts.x;
   bool lobeMultipliers = kLobeMultipliers && params.counts.w != 0;
   int sampleEnd = params.size.z + params.size.w;
