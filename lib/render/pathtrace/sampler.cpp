@@ -19,21 +19,14 @@ uint64_t combine(uint64_t seed, uint64_t value) { return mixBits(seed ^ mixBits(
 using sampler_detail::laineKarrasPermutation;
 using sampler_detail::reverseBits;
 
-// The odd multiplier laineKarrasPermutation takes with `seed`.
-uint32_t oddMultiplierOf(uint32_t seed) { return static_cast<uint32_t>(mixBits(seed) >> 32) | 1u; }
-
-uint32_t laineKarrasPermutation(uint32_t x, uint32_t seed) {
-  return laineKarrasPermutation(x, seed, oddMultiplierOf(seed));
-}
-
 }  // namespace
 
 uint32_t sobol(uint32_t index, int dimension) {
   return dimension == 0 ? reverseBits(index) : sampler_detail::sobolDimension1(index);
 }
 
-uint32_t nestedUniformScramble(uint32_t value, uint32_t seed) {
-  return reverseBits(laineKarrasPermutation(reverseBits(value), seed));
+uint32_t nestedUniformScramble(uint32_t value, uint32_t seed, uint32_t oddMultiplier) {
+  return reverseBits(laineKarrasPermutation(reverseBits(value), seed, oddMultiplier));
 }
 
 void SamplerTile::reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x, uint32_t y) {
@@ -44,14 +37,20 @@ void SamplerTile::reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x
   cachedSlots_ = 0;
 }
 
+// Four 64-bit hashes give the eight words: a seed and an odd multiplier for
+// each of the four hashes a draw makes (the GPU kernel works them out at
+// every draw, so they are as few as that allows).
 void SamplerTile::workOut(uint32_t slot, SlotKeys& keys) const {
-  const uint32_t seed = static_cast<uint32_t>(combine(tileSeed_, slot));
-  keys.shuffle = seed;
-  keys.x = static_cast<uint32_t>(combine(seed, 1));
-  keys.y = static_cast<uint32_t>(combine(seed, 2));
-  keys.shuffleMultiplier = oddMultiplierOf(keys.shuffle);
-  keys.xMultiplier = oddMultiplierOf(keys.x);
-  keys.yMultiplier = oddMultiplierOf(keys.y);
+  const uint64_t seeds = combine(tileSeed_, slot);
+  const uint64_t multipliers = combine(seeds, 0), x = combine(seeds, 1), y = combine(seeds, 2);
+  keys.quads = static_cast<uint32_t>(seeds >> 32);
+  keys.quadsMultiplier = static_cast<uint32_t>(multipliers >> 32) | 1u;
+  keys.shuffle = static_cast<uint32_t>(seeds);
+  keys.shuffleMultiplier = static_cast<uint32_t>(multipliers) | 1u;
+  keys.x = static_cast<uint32_t>(x);
+  keys.xMultiplier = static_cast<uint32_t>(x >> 32) | 1u;
+  keys.y = static_cast<uint32_t>(y);
+  keys.yMultiplier = static_cast<uint32_t>(y >> 32) | 1u;
 }
 
 const SamplerTile::SlotKeys& SamplerTile::workOutSlot(uint32_t slot) {

@@ -68,7 +68,7 @@ constexpr uint32_t reverseBits(uint32_t x) {
 // information from low bits to high bits only. Applied to bit-reversed
 // values it is a nested uniform scramble. The sequence of steps follows
 // Burley 2020 and Vegdahl's later refinement (a seed-dependent odd
-// multiplier, here passed in: sampler.cpp derives it from the seed); the
+// multiplier, here passed in: sampler.cpp hashes it with the seed); the
 // constants are this project's, chosen for flip bits that are unbiased and
 // pairwise independent across prefixes to within sampling noise (measured
 // over 20000 seeds on the first 7 digit levels).
@@ -121,6 +121,29 @@ constexpr uint32_t spreadBits(uint32_t v) {
 }
 constexpr uint32_t morton(uint32_t x, uint32_t y) { return spreadBits(x) | (spreadBits(y) << 1); }
 
+// The first step of the index shuffle, on the bit-reversed index: hands
+// each 2 x 2 quad's four sub-blocks of indices to its pixels by one of all
+// 24 permutations (as pbrt-v4's ZSobolSampler does with base-4 digits), where
+// the nested base-2 scramble that follows alone gives 8. That scramble keeps
+// a Morton digit's high bit's pair of pixels together in one half-block,
+// always the same two (with y the high bit: side by side), so the error of a
+// 4-sample frame came out in vertical stripes. Here each digit's half-block
+// is picked by y, x or x xor y (the quad's rows, columns or diagonals pair
+// up; probabilities 1/4, 1/4, 1/2, so rows and columns alike), chosen by two
+// bits of a Laine-Karras hash that depend only on the higher digits; the
+// scramble then flips the bits. A bijection that maps every aligned block of
+// whole digits onto another one, so square pixel blocks stay nets.
+// `highBits`: the digits' high bits' places in the reversed index
+// (SampleLayout::quadHighBits).
+constexpr uint32_t permuteQuads(uint32_t reversed, uint32_t highBits, uint32_t seed, uint32_t oddMultiplier) {
+  // Bit k of `random` depends on bits below k of the reversed index only, the digits above in the index.
+  const uint32_t random = laineKarrasPermutation(reversed, seed, oddMultiplier) ^ reversed;
+  const uint32_t byX = random & highBits, diagonal = (random << 1) & highBits;
+  const uint32_t y = reversed & highBits, x = (reversed >> 1) & highBits;
+  const uint32_t picked = (x & byX) | (y & ~byX), other = x ^ y ^ picked;
+  return (reversed & ~(highBits | (highBits << 1))) | (picked ^ (diagonal & other)) | (other << 1);
+}
+
 // 24 bits: every value is a float exactly, and the largest is below 1.
 constexpr float toUnitFloat(uint32_t fixedPoint) { return static_cast<float>(fixedPoint >> 8) * 0x1p-24f; }
 
@@ -135,6 +158,11 @@ struct SampleLayout {
   constexpr explicit SampleLayout(uint32_t samplesPerPixel)
       : sampleBits(samplesPerPixel <= 1 ? 0u : 32u - uint32_t(__builtin_clz(samplesPerPixel - 1))),
         tileBits(sampleBits + 2 * kMaxTileBits <= 32 ? kMaxTileBits : (32 - sampleBits) / 2) {}
+  // The high bits of the Morton code's base-4 digits (bit sampleBits + 2j + 1
+  // of the index, j < tileBits) in the bit-reversed index: bit 30 - sampleBits - 2j.
+  constexpr uint32_t quadHighBits() const {
+    return tileBits == 0 ? 0u : (0x55555555u & ((1u << (2 * tileBits)) - 1u)) << (32 - sampleBits - 2 * tileBits);
+  }
   // The index of pixel (x, y)'s first sample; sample s is indexBase | s.
   constexpr uint32_t indexBase(uint32_t x, uint32_t y) const {
     const uint32_t mask = (1u << tileBits) - 1u;
@@ -147,9 +175,11 @@ struct SampleLayout {
 // the first kCachedSlots slots.
 class SamplerTile {
  public:
-  // A slot's keys: the seed of the index shuffle and of each coordinate's
-  // scramble, each with the odd multiplier its hash derives from it.
+  // A slot's keys: the seeds of the index shuffle's two steps (the quads'
+  // permutation, the nested scramble) and of each coordinate's scramble,
+  // each with the odd multiplier of its hash.
   struct SlotKeys {
+    uint32_t quads, quadsMultiplier;
     uint32_t shuffle, shuffleMultiplier;
     uint32_t x, xMultiplier;
     uint32_t y, yMultiplier;
@@ -188,7 +218,8 @@ class SamplerTile {
 class PixelSampler {
  public:
   // Pixel (x, y), which `tile` holds.
-  PixelSampler(SamplerTile& tile, uint32_t x, uint32_t y) : tile_(&tile), indexBase_(tile.layout().indexBase(x, y)) {}
+  PixelSampler(SamplerTile& tile, uint32_t x, uint32_t y)
+      : tile_(&tile), indexBase_(tile.layout().indexBase(x, y)), quadHighBits_(tile.layout().quadHighBits()) {}
 
   // Starts sample `index` (below the frame's samples per pixel) of this
   // pixel; the next draw is its first slot.
@@ -213,20 +244,23 @@ class PixelSampler {
 
  private:
   // Scrambling the index (not just the values) shuffles which point each
-  // sample gets, so two slots of one sample are not the same point twice;
-  // it maps every aligned block of 2^m indices onto another such block, so
-  // the nets survive. The formulas, with rev() the bit reversal and LK()
-  // laineKarrasPermutation():
-  //   shuffled = nestedUniformScramble(index, shuffle) = rev(LK(rev(index), shuffle))
+  // sample gets, so two slots of one sample are not the same point twice,
+  // and which sub-block of a block each pixel gets; it maps every aligned
+  // block of whole base-4 Morton digits onto another such block, so the nets
+  // survive. The formulas, with rev() the bit reversal, LK()
+  // laineKarrasPermutation() and the keys' multipliers left out:
+  //   shuffled = rev(LK(permuteQuads(rev(index), quads), shuffle))
   //   x = nestedUniformScramble(sobol(shuffled, 0), x) = rev(LK(shuffled, x)), as sobol(., 0) = rev()
   //   y = nestedUniformScramble(sobol(shuffled, 1), y) = rev(LK(rev(sobol(shuffled, 1)), y))
   uint32_t shuffledIndex(const SamplerTile::SlotKeys& keys) const {
-    return sampler_detail::reverseBits(
-        sampler_detail::laineKarrasPermutation(reversedIndex_, keys.shuffle, keys.shuffleMultiplier));
+    using namespace sampler_detail;
+    const uint32_t quads = permuteQuads(reversedIndex_, quadHighBits_, keys.quads, keys.quadsMultiplier);
+    return reverseBits(laineKarrasPermutation(quads, keys.shuffle, keys.shuffleMultiplier));
   }
 
   SamplerTile* tile_;
   uint32_t indexBase_;
+  uint32_t quadHighBits_;
   uint32_t reversedIndex_ = 0;
   uint32_t slot_ = 0;
 };
@@ -239,7 +273,7 @@ uint32_t sobol(uint32_t index, int dimension);
 
 // Owen's nested uniform scramble of a 0.32 fixed-point value: digit k (from
 // the most significant) is flipped by a pseudo-random function of the seed
-// and the digits above it only.
-uint32_t nestedUniformScramble(uint32_t value, uint32_t seed);
+// (and the hash's odd multiplier) and the digits above it only.
+uint32_t nestedUniformScramble(uint32_t value, uint32_t seed, uint32_t oddMultiplier);
 
 }  // namespace sdg

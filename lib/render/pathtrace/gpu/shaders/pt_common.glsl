@@ -82,8 +82,7 @@ uvec2 mixBits(uvec2 z) {
 }
 uvec2 combine(uvec2 seed, uvec2 value) { return mixBits(xor64(seed, mixBits(add64(value, uvec2(0x7f4a7c15u, 0x9e3779b9u))))); }
 
-uint laineKarrasPermutation(uint x, uint seed) {
-  uint oddMultiplier = mixBits(uvec2(seed, 0u)).y | 1u;
+uint laineKarrasPermutation(uint x, uint seed, uint oddMultiplier) {
   x ^= x * 0x2a9e6f52u;
   x += seed;
   x *= oddMultiplier;
@@ -91,24 +90,28 @@ uint laineKarrasPermutation(uint x, uint seed) {
   x ^= x * 0xd6e8feb6u;
   return x;
 }
-uint nestedUniformScramble(uint value, uint seed) {
-  return bitfieldReverse(laineKarrasPermutation(bitfieldReverse(value), seed));
+// sampler.h's permuteQuads: each Morton digit's quad of sub-blocks handed to its pixels by any of 24 permutations.
+uint permuteQuads(uint reversed, uint highBits, uint seed, uint oddMultiplier) {
+  uint random = laineKarrasPermutation(reversed, seed, oddMultiplier) ^ reversed;
+  uint byX = random & highBits, diagonal = (random << 1) & highBits;
+  uint y = reversed & highBits, x = (reversed >> 1) & highBits;
+  uint picked = (x & byX) | (y & ~byX), other = x ^ y ^ picked;
+  return (reversed & ~(highBits | (highBits << 1))) | (picked ^ (diagonal & other)) | (other << 1);
 }
-// Sobol's first two dimensions. The second's generator is Pascal's
-// triangle mod 2: by Lucas' theorem index bit k reaches result bit 31 - j
-// when j's bits are a subset of k's, so the product is the superset XOR
-// transform of the index's bits, five shift-and-xor steps, then reversed
-// (the same numbers as sampler.cpp's; a loop over the index's bits ran up
-// to 32 times here, as the scrambled index's high bits are random).
-uint sobol(uint index, int dimension) {
-  if (dimension == 0) return bitfieldReverse(index);
+// Sobol's second dimension, bit-reversed (sampler.h's kReversedSobol1; the
+// first is the reversed index itself). Its generator is Pascal's triangle
+// mod 2: by Lucas' theorem index bit k reaches result bit 31 - j when j's
+// bits are a subset of k's, so the product is the superset XOR transform of
+// the index's bits, five shift-and-xor steps (a loop over the index's bits
+// ran up to 32 times here, as the scrambled index's high bits are random).
+uint reversedSobol1(uint index) {
   uint y = index;
   y ^= (y >> 1) & 0x55555555u;
   y ^= (y >> 2) & 0x33333333u;
   y ^= (y >> 4) & 0x0f0f0f0fu;
   y ^= (y >> 8) & 0x00ff00ffu;
   y ^= (y >> 16) & 0x0000ffffu;
-  return bitfieldReverse(y);
+  return y;
 }
 float toUnitFloat(uint fixedPoint) { return float(fixedPoint >> 8) * (1.0 / 16777216.0); }
 
@@ -127,8 +130,9 @@ uint spreadBits(uint v) {
 // docs/performance.md); the tile's seed and the pixel's first index once.
 struct Sampler {
   uvec2 tileSeed;
-  uint indexBase;  // the pixel's first Sobol index: its Morton code in the tile, above the sample bits
-  uint index;
+  uint indexBase;    // the pixel's first Sobol index: its Morton code in the tile, above the sample bits
+  uint highBits;     // SampleLayout::quadHighBits
+  uint reversed;     // the sample's Sobol index, bit-reversed
   uint slot;
 };
 // bits: sampler.h's SampleLayout (sample bits, tile bits) for the frame's samples per pixel.
@@ -137,29 +141,36 @@ Sampler pixelSampler(uvec2 frameSeed, uint x, uint y, uvec2 bits) {
   s.tileSeed = combine(combine(mixBits(frameSeed), uvec2(x >> bits.y, 0u)), uvec2(y >> bits.y, 0u));
   uint mask = (1u << bits.y) - 1u;
   s.indexBase = bits.x >= 32u ? 0u : (spreadBits(x & mask) | (spreadBits(y & mask) << 1)) << bits.x;
-  s.index = 0u;
+  s.highBits = bits.y == 0u ? 0u : (0x55555555u & ((1u << (2u * bits.y)) - 1u)) << (32u - bits.x - 2u * bits.y);
+  s.reversed = 0u;
   s.slot = 0u;
   return s;
 }
 void startSample(inout Sampler s, uint index) {
-  s.index = s.indexBase | index;
+  s.reversed = bitfieldReverse(s.indexBase | index);
   s.slot = 0u;
 }
-uint slotSeed(inout Sampler s) {
-  uint seed = combine(s.tileSeed, uvec2(s.slot, 0u)).x;
+// The slot's shuffled index; seeds: the slot's first hash (the shuffle's
+// two seeds), from which SamplerTile::workOut's others come.
+uint shuffledIndex(inout Sampler s, out uvec2 seeds) {
+  seeds = combine(s.tileSeed, uvec2(s.slot, 0u));
   s.slot++;
-  return seed;
+  uvec2 multipliers = combine(seeds, uvec2(0u)) | uvec2(1u);
+  uint quads = permuteQuads(s.reversed, s.highBits, seeds.y, multipliers.y);
+  return bitfieldReverse(laineKarrasPermutation(quads, seeds.x, multipliers.x));
 }
 vec2 next2D(inout Sampler s) {
-  uint seed = slotSeed(s);
-  uint shuffled = nestedUniformScramble(s.index, seed);
-  return vec2(toUnitFloat(nestedUniformScramble(sobol(shuffled, 0), combine(uvec2(seed, 0u), uvec2(1u, 0u)).x)),
-              toUnitFloat(nestedUniformScramble(sobol(shuffled, 1), combine(uvec2(seed, 0u), uvec2(2u, 0u)).x)));
+  uvec2 seeds;
+  uint shuffled = shuffledIndex(s, seeds);
+  uvec2 x = combine(seeds, uvec2(1u, 0u)), y = combine(seeds, uvec2(2u, 0u));
+  return vec2(toUnitFloat(bitfieldReverse(laineKarrasPermutation(shuffled, x.x, x.y | 1u))),
+              toUnitFloat(bitfieldReverse(laineKarrasPermutation(reversedSobol1(shuffled), y.x, y.y | 1u))));
 }
 float next1D(inout Sampler s) {
-  uint seed = slotSeed(s);
-  uint shuffled = nestedUniformScramble(s.index, seed);
-  return toUnitFloat(nestedUniformScramble(sobol(shuffled, 0), combine(uvec2(seed, 0u), uvec2(1u, 0u)).x));
+  uvec2 seeds;
+  uint shuffled = shuffledIndex(s, seeds);
+  uvec2 x = combine(seeds, uvec2(1u, 0u));
+  return toUnitFloat(bitfieldReverse(laineKarrasPermutation(shuffled, x.x, x.y | 1u)));
 }
 
 float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
