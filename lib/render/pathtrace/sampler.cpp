@@ -34,7 +34,7 @@ void SamplerTile::reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x
   tileX_ = x >> layout_.tileBits;
   tileY_ = y >> layout_.tileBits;
   tileSeed_ = combine(combine(mixBits(frameSeed), tileX_), tileY_);
-  cachedSlots_ = 0;
+  for (uint32_t slot = 0; slot < kCachedSlots; ++slot) workOut(slot, cache_[slot]);
 }
 
 // Four 64-bit hashes give the eight words: a seed and an odd multiplier for
@@ -53,14 +53,16 @@ void SamplerTile::workOut(uint32_t slot, SlotKeys& keys) const {
   keys.yMultiplier = static_cast<uint32_t>(y >> 32) | 1u;
 }
 
-const SamplerTile::SlotKeys& SamplerTile::workOutSlot(uint32_t slot) {
-  if (slot >= kCachedSlots) {
-    workOut(slot, scratch_);
-    return scratch_;
-  }
-  // Samplers draw slot k after slot k - 1, so this loop runs once; the cache stays a prefix whatever the order.
-  for (; cachedSlots_ <= slot; ++cachedSlots_) workOut(cachedSlots_, cache_[cachedSlots_]);
-  return cache_[slot];
+const SamplerTile::SlotKeys& PixelSampler::workOutSlot(uint32_t slot, uint32_t& pixel) {
+  const SamplerTile::SlotKeys* keys = &scratch_;
+  if (slot < kCachedSlots)
+    keys = &tile_->cachedKeys(slot);
+  else
+    tile_->workOut(slot, scratch_);
+  pixel = sampler_detail::permuteQuads(reversedPixel_, quadHighBits_, keys->quads, keys->quadsMultiplier);
+  // Slots are drawn in order from 0, so the first draw of a slot below the cache's end is the next one.
+  if (slot == cachedSlots_ && slot < kCachedSlots) quads_[cachedSlots_++] = pixel;
+  return *keys;
 }
 
 }  // namespace sdg

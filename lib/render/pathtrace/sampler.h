@@ -9,19 +9,21 @@
 // Every draw (a next2D() pair or a next1D() value) takes the next
 // "dimension slot" of the sample. Each slot uses the first two Sobol
 // dimensions, which form a (0,2)-sequence in base 2, with
-// - its own shuffle of the sample index (a nested uniform scramble of the
-//   index), so slots are decorrelated from one another, and
+// - its own shuffle of the sample index, so slots are decorrelated from one
+//   another, and
 // - its own nested uniform (Owen) scramble of each coordinate, done with a
 //   Laine-Karras style hash.
-// Both scrambles keep the net structure: the points of an aligned block of
-// 2^m indices [k 2^m, (k+1) 2^m) of a slot form a (0,m,2)-net, so every
-// elementary interval of area 2^-m holds exactly one point.
+// The points of an aligned block of 2^m indices [k 2^m, (k+1) 2^m) form a
+// (0,m,2)-net: every elementary interval of area 2^-m holds exactly one
+// point. Both scrambles keep that for the blocks below (the shuffle maps
+// each onto another aligned block).
 //
 // The Z-order: sample s of pixel (x, y) is Sobol index
 //   (morton(x mod T, y mod T) << sampleBits) | s,
 // sampleBits = ceil(log2(samples per pixel)), T = 2^tileBits the side of a
-// square tile. A pixel's samples are one aligned block, and so are those of
-// every aligned 2^k x 2^k block of pixels within a tile: the block's
+// square tile. A pixel's samples are one aligned block (and so are its
+// samples' aligned power-of-two runs), and so are those of every aligned
+// 2^k x 2^k block of pixels within a tile: the block's
 // 4^k x spp points of a slot form a net too, so the errors of neighbouring
 // pixels cancel (a block mean converges like quasi-Monte Carlo; the error
 // image is blue noise, which the denoiser averages away better). The
@@ -31,10 +33,12 @@
 // tiles up to 2^20 samples per pixel, smaller ones beyond (a tile of one
 // pixel at 2^31). A sample count not a power of two leaves indices unused.
 //
-// The index shuffle flips the Morton code's bits (a nested base-2
-// scramble): of the 24 ways to hand a 2x2 quad's four sub-blocks to its
-// pixels it gives 8 (pbrt permutes whole base-4 digits, all 24; see
-// docs/rendering.md for why the base-2 one is kept).
+// The index shuffle first permutes each 2 x 2 quad's four sub-blocks among
+// its pixels by any of the 24 permutations (permuteQuads(), as pbrt-v4
+// permutes base-4 digits), then flips bits as a nested base-2 scramble. The
+// scramble alone gives 8 of the 24 and always keeps the same two pixels of a
+// quad in one half-block: a frame's error came out in vertical stripes
+// (docs/rendering.md).
 //
 // A stream depends only on (frame seed, samples per pixel, pixel x, y,
 // sample index, slot): never on the thread that draws it, the order pixels
@@ -43,9 +47,11 @@
 //
 // Speed: a slot's keys depend on the tile and the slot, not on the pixel
 // or sample, so a SamplerTile works them out once for its first
-// kCachedSlots slots and all its pixels' samples reuse them; Sobol's second
-// dimension comes from byte tables. Both give exactly the numbers of the
-// plain formulas (sobol(), nestedUniformScramble()).
+// kCachedSlots slots and all its pixels' samples reuse them; the quads'
+// permutation of a pixel's Morton code depends on the pixel and the slot,
+// so a PixelSampler keeps it from its first sample on; Sobol's second
+// dimension comes from byte tables. All give exactly the numbers of the
+// plain formulas (sobol(), nestedUniformScramble(), permuteQuads()).
 #include <cstdint>
 
 #include "stage/math_types.h"
@@ -171,8 +177,8 @@ struct SampleLayout {
 };
 
 // The scramble keys of one tile's slots in one frame, shared by the tile's
-// pixel samplers: worked out the first time a slot is drawn and kept for
-// the first kCachedSlots slots.
+// pixel samplers: worked out for the first kCachedSlots slots when the tile
+// is set, and by each draw beyond them.
 class SamplerTile {
  public:
   // A slot's keys: the seeds of the index shuffle's two steps (the quads'
@@ -199,17 +205,15 @@ class SamplerTile {
   bool holds(uint32_t x, uint32_t y) const {
     return (x >> layout_.tileBits) == tileX_ && (y >> layout_.tileBits) == tileY_;
   }
-  const SlotKeys& keys(uint32_t slot) { return slot < cachedSlots_ ? cache_[slot] : workOutSlot(slot); }
-
- private:
-  const SlotKeys& workOutSlot(uint32_t slot);
+  // A cached slot's keys (slot < kCachedSlots).
+  const SlotKeys& cachedKeys(uint32_t slot) const { return cache_[slot]; }
+  // Any slot's keys, worked out.
   void workOut(uint32_t slot, SlotKeys& keys) const;
 
+ private:
   SampleLayout layout_{1};
   uint32_t tileX_ = 0, tileY_ = 0;
   uint64_t tileSeed_ = 0;
-  uint32_t cachedSlots_ = 0;  // slots [0, cachedSlots_) of cache_ are worked out
-  SlotKeys scratch_;          // a slot beyond the cache
   SlotKeys cache_[kCachedSlots];
 };
 
@@ -218,31 +222,51 @@ class SamplerTile {
 class PixelSampler {
  public:
   // Pixel (x, y), which `tile` holds.
-  PixelSampler(SamplerTile& tile, uint32_t x, uint32_t y)
-      : tile_(&tile), indexBase_(tile.layout().indexBase(x, y)), quadHighBits_(tile.layout().quadHighBits()) {}
+  PixelSampler(const SamplerTile& tile, uint32_t x, uint32_t y)
+      : tile_(&tile),
+        reversedPixel_(sampler_detail::reverseBits(tile.layout().indexBase(x, y))),
+        quadHighBits_(tile.layout().quadHighBits()) {}
 
   // Starts sample `index` (below the frame's samples per pixel) of this
   // pixel; the next draw is its first slot.
   void startSample(uint32_t index) {
-    reversedIndex_ = sampler_detail::reverseBits(indexBase_ | index);
+    reversedSample_ = sampler_detail::reverseBits(index);
     slot_ = 0;
   }
   // The next slot's two coordinates, each in [0, 1).
   Vec2f next2D() {
     using namespace sampler_detail;
-    const SamplerTile::SlotKeys& keys = tile_->keys(slot_++);
-    const uint32_t shuffled = shuffledIndex(keys);
+    uint32_t pixel;
+    const SamplerTile::SlotKeys& keys = nextSlot(pixel);
+    const uint32_t shuffled = shuffledIndex(pixel, keys);
     return {toUnitFloat(reverseBits(laineKarrasPermutation(shuffled, keys.x, keys.xMultiplier))),
             toUnitFloat(reverseBits(laineKarrasPermutation(kReversedSobol1(shuffled), keys.y, keys.yMultiplier)))};
   }
   // The next slot's first coordinate, in [0, 1).
   float next1D() {
     using namespace sampler_detail;
-    const SamplerTile::SlotKeys& keys = tile_->keys(slot_++);
-    return toUnitFloat(reverseBits(laineKarrasPermutation(shuffledIndex(keys), keys.x, keys.xMultiplier)));
+    uint32_t pixel;
+    const SamplerTile::SlotKeys& keys = nextSlot(pixel);
+    return toUnitFloat(reverseBits(laineKarrasPermutation(shuffledIndex(pixel, keys), keys.x, keys.xMultiplier)));
   }
 
  private:
+  static constexpr uint32_t kCachedSlots = SamplerTile::kCachedSlots;
+
+  // Steps on to the next slot: its keys (valid until the next draw) and,
+  // in `pixel`, the pixel's reversed Morton code after the slot's quads'
+  // permutation. The quads' permutation reads and writes the Morton digits
+  // only, which lie above the sample's bits in the index: it depends on the
+  // pixel and the slot, not the sample, so it is kept per slot.
+  const SamplerTile::SlotKeys& nextSlot(uint32_t& pixel) {
+    const uint32_t slot = slot_++;
+    if (slot < cachedSlots_) {
+      pixel = quads_[slot];
+      return tile_->cachedKeys(slot);
+    }
+    return workOutSlot(slot, pixel);
+  }
+  const SamplerTile::SlotKeys& workOutSlot(uint32_t slot, uint32_t& pixel);
   // Scrambling the index (not just the values) shuffles which point each
   // sample gets, so two slots of one sample are not the same point twice,
   // and which sub-block of a block each pixel gets; it maps every aligned
@@ -252,17 +276,20 @@ class PixelSampler {
   //   shuffled = rev(LK(permuteQuads(rev(index), quads), shuffle))
   //   x = nestedUniformScramble(sobol(shuffled, 0), x) = rev(LK(shuffled, x)), as sobol(., 0) = rev()
   //   y = nestedUniformScramble(sobol(shuffled, 1), y) = rev(LK(rev(sobol(shuffled, 1)), y))
-  uint32_t shuffledIndex(const SamplerTile::SlotKeys& keys) const {
+  // where permuteQuads(rev(index)) = pixel | rev(sample).
+  uint32_t shuffledIndex(uint32_t pixel, const SamplerTile::SlotKeys& keys) const {
     using namespace sampler_detail;
-    const uint32_t quads = permuteQuads(reversedIndex_, quadHighBits_, keys.quads, keys.quadsMultiplier);
-    return reverseBits(laineKarrasPermutation(quads, keys.shuffle, keys.shuffleMultiplier));
+    return reverseBits(laineKarrasPermutation(pixel | reversedSample_, keys.shuffle, keys.shuffleMultiplier));
   }
 
-  SamplerTile* tile_;
-  uint32_t indexBase_;
+  const SamplerTile* tile_;
+  uint32_t reversedPixel_;  // the pixel's first index, bit-reversed: its Morton code
   uint32_t quadHighBits_;
-  uint32_t reversedIndex_ = 0;
+  uint32_t reversedSample_ = 0;
   uint32_t slot_ = 0;
+  uint32_t cachedSlots_ = 0;       // slots [0, cachedSlots_) of quads_ are worked out
+  uint32_t quads_[kCachedSlots];   // per slot: the pixel's reversed Morton code after the quads' permutation
+  SamplerTile::SlotKeys scratch_;  // a slot beyond the cache
 };
 
 // The building blocks, exposed for the tests.
