@@ -16,6 +16,15 @@ uint64_t mixBits(uint64_t z) {
 
 uint64_t combine(uint64_t seed, uint64_t value) { return mixBits(seed ^ mixBits(value + 0x9e3779b97f4a7c15ull)); }
 
+// MurmurHash3's 32-bit finaliser: every input bit reaches every output bit.
+uint32_t mix32(uint32_t h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bu;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35u;
+  return h ^ (h >> 16);
+}
+
 using sampler_detail::laineKarrasPermutation;
 using sampler_detail::reverseBits;
 
@@ -37,20 +46,22 @@ void SamplerTile::reset(uint64_t frameSeed, uint32_t samplesPerPixel, uint32_t x
   for (uint32_t slot = 0; slot < kCachedSlots; ++slot) workOut(slot, cache_[slot]);
 }
 
-// Four 64-bit hashes give the eight words: a seed and an odd multiplier for
-// each of the four hashes a draw makes (the GPU kernel works them out at
-// every draw, so they are as few as that allows).
+// A slot's eight words: one 64-bit hash of the tile's seed and the slot (a
+// SplitMix64 step: the seed advanced by the slot times the golden ratio,
+// then mixed) gives the index shuffle's two seeds; 32-bit hashes of those
+// give the coordinates' seeds and every hash's odd multiplier. The GPU
+// kernel works them out at every draw, where a 64-bit hash is many 32-bit
+// operations, so there is only the one.
 void SamplerTile::workOut(uint32_t slot, SlotKeys& keys) const {
-  const uint64_t seeds = combine(tileSeed_, slot);
-  const uint64_t multipliers = combine(seeds, 0), x = combine(seeds, 1), y = combine(seeds, 2);
+  const uint64_t seeds = mixBits(tileSeed_ + (uint64_t{slot} + 1) * 0x9e3779b97f4a7c15ull);
   keys.quads = static_cast<uint32_t>(seeds >> 32);
-  keys.quadsMultiplier = static_cast<uint32_t>(multipliers >> 32) | 1u;
   keys.shuffle = static_cast<uint32_t>(seeds);
-  keys.shuffleMultiplier = static_cast<uint32_t>(multipliers) | 1u;
-  keys.x = static_cast<uint32_t>(x);
-  keys.xMultiplier = static_cast<uint32_t>(x >> 32) | 1u;
-  keys.y = static_cast<uint32_t>(y);
-  keys.yMultiplier = static_cast<uint32_t>(y >> 32) | 1u;
+  keys.x = mix32(keys.shuffle + 0x632be59bu);
+  keys.y = mix32(keys.quads + 0x85157af5u);
+  keys.quadsMultiplier = mix32(keys.quads) | 1u;
+  keys.shuffleMultiplier = mix32(keys.shuffle) | 1u;
+  keys.xMultiplier = mix32(keys.x) | 1u;
+  keys.yMultiplier = mix32(keys.y) | 1u;
 }
 
 const SamplerTile::SlotKeys& PixelSampler::workOutSlot(uint32_t slot, uint32_t& pixel) {

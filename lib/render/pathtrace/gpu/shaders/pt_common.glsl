@@ -150,27 +150,35 @@ void startSample(inout Sampler s, uint index) {
   s.reversed = bitfieldReverse(s.indexBase | index);
   s.slot = 0u;
 }
-// The slot's shuffled index; seeds: the slot's first hash (the shuffle's
-// two seeds), from which SamplerTile::workOut's others come.
+// sampler.cpp's mix32 (MurmurHash3's 32-bit finaliser).
+uint mix32(uint h) {
+  h ^= h >> 16;
+  h *= 0x85ebca6bu;
+  h ^= h >> 13;
+  h *= 0xc2b2ae35u;
+  return h ^ (h >> 16);
+}
+// The slot's shuffled index (SamplerTile::workOut's keys, worked out here at
+// each draw); seeds: the index shuffle's two seeds, the x seed's source.
 uint shuffledIndex(inout Sampler s, out uvec2 seeds) {
-  seeds = combine(s.tileSeed, uvec2(s.slot, 0u));
   s.slot++;
-  uvec2 multipliers = combine(seeds, uvec2(0u)) | uvec2(1u);
-  uint quads = permuteQuads(s.reversed, s.highBits, seeds.y, multipliers.y);
-  return bitfieldReverse(laineKarrasPermutation(quads, seeds.x, multipliers.x));
+  seeds = mixBits(add64(s.tileSeed, mul64(uvec2(s.slot, 0u), uvec2(0x7f4a7c15u, 0x9e3779b9u))));
+  uint quads = permuteQuads(s.reversed, s.highBits, seeds.y, mix32(seeds.y) | 1u);
+  return bitfieldReverse(laineKarrasPermutation(quads, seeds.x, mix32(seeds.x) | 1u));
+}
+float scrambledCoordinate(uint reversedValue, uint seed) {
+  return toUnitFloat(bitfieldReverse(laineKarrasPermutation(reversedValue, seed, mix32(seed) | 1u)));
 }
 vec2 next2D(inout Sampler s) {
   uvec2 seeds;
   uint shuffled = shuffledIndex(s, seeds);
-  uvec2 x = combine(seeds, uvec2(1u, 0u)), y = combine(seeds, uvec2(2u, 0u));
-  return vec2(toUnitFloat(bitfieldReverse(laineKarrasPermutation(shuffled, x.x, x.y | 1u))),
-              toUnitFloat(bitfieldReverse(laineKarrasPermutation(reversedSobol1(shuffled), y.x, y.y | 1u))));
+  return vec2(scrambledCoordinate(shuffled, mix32(seeds.x + 0x632be59bu)),
+              scrambledCoordinate(reversedSobol1(shuffled), mix32(seeds.y + 0x85157af5u)));
 }
 float next1D(inout Sampler s) {
   uvec2 seeds;
   uint shuffled = shuffledIndex(s, seeds);
-  uvec2 x = combine(seeds, uvec2(1u, 0u));
-  return toUnitFloat(bitfieldReverse(laineKarrasPermutation(shuffled, x.x, x.y | 1u)));
+  return scrambledCoordinate(shuffled, mix32(seeds.x + 0x632be59bu));
 }
 
 float luminance(vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
