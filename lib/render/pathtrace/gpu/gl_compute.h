@@ -60,14 +60,16 @@ class GpuUnavailable : public std::runtime_error {
   X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
 
 // GL 4.4's, for reading the film back through pinned host memory; null on
-// a 4.3 context, which reads it back with glGetBufferSubData instead.
+// a 4.3 context, which reads it back with glGetBufferSubData instead. And
+// glGetProgramBinary, for SDG_GPU_KERNEL_DUMP (gpu_path_tracer.cpp).
 #define SDG_GL_COMPUTE_OPTIONAL_FUNCTIONS(X)               \
   X(PFNGLBUFFERSTORAGEPROC, glBufferStorage)               \
   X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange)             \
   X(PFNGLCOPYBUFFERSUBDATAPROC, glCopyBufferSubData)       \
   X(PFNGLFENCESYNCPROC, glFenceSync)                       \
   X(PFNGLCLIENTWAITSYNCPROC, glClientWaitSync)             \
-  X(PFNGLDELETESYNCPROC, glDeleteSync)
+  X(PFNGLDELETESYNCPROC, glDeleteSync)                     \
+  X(PFNGLGETPROGRAMBINARYPROC, glGetProgramBinary)
 
 struct GlComputeApi {
 #define SDG_DECLARE_GL(type, name) type name = nullptr;

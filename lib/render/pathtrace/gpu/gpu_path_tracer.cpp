@@ -35,10 +35,14 @@ namespace {
 // compiled program, so the GLSL alone decides it): 8 x 4, one 32-wide warp
 // per group, traced 28-31 % faster than 8 x 8 on an H100 (docs/performance.md).
 constexpr int kDenoiseGroup = 8;  // pt_denoise.glsl's local size, both axes
-// Samples per dispatch: about a million paths, so no single dispatch runs
-// long enough for a driver to call the device hung. Any split gives the
-// same sums (each pixel adds its samples in order).
-constexpr int64_t kPathsPerDispatch = 1 << 20;
+// Samples per dispatch: about 16 million paths (64 samples of 512 x 512
+// pixels), about 25 ms on an H100, so no single dispatch runs long enough
+// for a display driver's watchdog to call the device hung even on a GPU ten
+// times slower. Each dispatch ends with the GPU draining (its last warps run
+// alone), so fewer are faster: the demo at 64 samples took 28.4 ms a frame
+// with 1 million paths a dispatch, 25.3 ms with 16 million. Any split gives
+// the same sums (each pixel adds its samples in order).
+constexpr int64_t kPathsPerDispatch = 1 << 24;
 
 enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
@@ -59,6 +63,24 @@ std::string kernelSource(const char* compiledIn, const char* name) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// SDG_GPU_KERNEL_DUMP=DIR: each tracing kernel's program binary written to
+// DIR/pt_trace_FEATURES.bin as the driver returns it (NVIDIA's holds the
+// compiled assembly as text), to see what a kernel change did to the
+// code; for kernel development only.
+void dumpProgram(const GlComputeApi& g, GLuint program, uint32_t features) {
+  const char* dir = std::getenv("SDG_GPU_KERNEL_DUMP");
+  if (!dir || !*dir || !g.glGetProgramBinary) return;
+  GLint length = 0;
+  g.glGetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
+  std::vector<char> bytes(size_t(std::max(length, 0)));
+  GLenum format = 0;
+  GLsizei written = 0;
+  if (length > 0) g.glGetProgramBinary(program, length, &written, &format, bytes.data());
+  std::ofstream out(std::string(dir) + "/pt_trace_" + std::to_string(features) + ".bin", std::ios::binary);
+  out.write(bytes.data(), std::streamsize(written));
+  if (!out) throw RunError(std::string("SDG_GPU_KERNEL_DUMP: cannot write into ") + dir);
 }
 
 // pt_common.glsl's switch for each GpuKernelFeature.
@@ -282,6 +304,7 @@ struct GpuPathTracer::Impl {
     TraceProgram program;
     program.id = build(parts, std::size(parts), "path tracing");
     gl().glGetProgramiv(program.id, GL_COMPUTE_WORK_GROUP_SIZE, program.group);
+    dumpProgram(gl(), program.id, features);
     return programs.emplace(features, program).first->second;
   }
 
