@@ -60,16 +60,14 @@ class GpuUnavailable : public std::runtime_error {
   X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)
 
 // GL 4.4's, for reading the film back through pinned host memory; null on
-// a 4.3 context, which reads it back with glGetBufferSubData instead. And
-// glGetProgramBinary, for SDG_GPU_KERNEL_DUMP (gpu_path_tracer.cpp).
+// a 4.3 context, which reads it back with glGetBufferSubData instead.
 #define SDG_GL_COMPUTE_OPTIONAL_FUNCTIONS(X)               \
   X(PFNGLBUFFERSTORAGEPROC, glBufferStorage)               \
   X(PFNGLMAPBUFFERRANGEPROC, glMapBufferRange)             \
   X(PFNGLCOPYBUFFERSUBDATAPROC, glCopyBufferSubData)       \
   X(PFNGLFENCESYNCPROC, glFenceSync)                       \
   X(PFNGLCLIENTWAITSYNCPROC, glClientWaitSync)             \
-  X(PFNGLDELETESYNCPROC, glDeleteSync)                     \
-  X(PFNGLGETPROGRAMBINARYPROC, glGetProgramBinary)
+  X(PFNGLDELETESYNCPROC, glDeleteSync)
 
 struct GlComputeApi {
 #define SDG_DECLARE_GL(type, name) type name = nullptr;

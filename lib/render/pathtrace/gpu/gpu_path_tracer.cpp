@@ -65,24 +65,6 @@ std::string kernelSource(const char* compiledIn, const char* name) {
   return text.str();
 }
 
-// SDG_GPU_KERNEL_DUMP=DIR: each tracing kernel's program binary written to
-// DIR/pt_trace_FEATURES.bin as the driver returns it (NVIDIA's holds the
-// compiled assembly as text), to see what a kernel change did to the
-// code; for kernel development only.
-void dumpProgram(const GlComputeApi& g, GLuint program, uint32_t features) {
-  const char* dir = std::getenv("SDG_GPU_KERNEL_DUMP");
-  if (!dir || !*dir || !g.glGetProgramBinary) return;
-  GLint length = 0;
-  g.glGetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
-  std::vector<char> bytes(size_t(std::max(length, 0)));
-  GLenum format = 0;
-  GLsizei written = 0;
-  if (length > 0) g.glGetProgramBinary(program, length, &written, &format, bytes.data());
-  std::ofstream out(std::string(dir) + "/pt_trace_" + std::to_string(features) + ".bin", std::ios::binary);
-  out.write(bytes.data(), std::streamsize(written));
-  if (!out) throw RunError(std::string("SDG_GPU_KERNEL_DUMP: cannot write into ") + dir);
-}
-
 // pt_common.glsl's switch for each GpuKernelFeature.
 struct FeatureSwitch {
   const char* name;
@@ -304,7 +286,6 @@ struct GpuPathTracer::Impl {
     TraceProgram program;
     program.id = build(parts, std::size(parts), "path tracing");
     gl().glGetProgramiv(program.id, GL_COMPUTE_WORK_GROUP_SIZE, program.group);
-    dumpProgram(gl(), program.id, features);
     return programs.emplace(features, program).first->second;
   }
 
