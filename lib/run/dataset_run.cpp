@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -151,6 +152,10 @@ class DatasetRun {
   // The colour of every product: the rasterizer's, or traced (on `threads`
   // cores, or the GPU) while the pool encodes the frames before it.
   std::unique_ptr<ColorRenderer> color_;
+  // color_ while it is being made, on a helper thread during the pre-roll
+  // (colorRenderer() takes it over).
+  std::future<std::unique_ptr<ColorRenderer>> colorMaking_;
+  ColorRenderer& colorRenderer();
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<ChangeRecorder> recorder_;
   const Stage original_;
@@ -224,9 +229,16 @@ void DatasetRun::prepare() {
   startRenderer(initialList);
   const SourceLoc* tracerAt = scene_.render.locOf("pathtracer");
   RendererBringUp& bringUp = *bringUp_;
-  color_ = makeColorRenderer(
-      {loaded_.assets, settings_, int(threads_), [&bringUp]() -> GlContext& { return bringUp.context(); }},
-      tracerAt ? *tracerAt : sceneLoc_);
+  // Made on a helper thread while the pre-roll runs, like the rasterizer:
+  // the GPU tracer's EGL context and first kernel take 0.06-0.1 s on an
+  // H100 machine (more where the driver's shader cache is cold). A failure
+  // to make it (render.pathtracer: gpu where it cannot run) is reported
+  // when the first frame needs it.
+  ColorRendererInputs inputs{loaded_.assets, settings_, int(threads_),
+                             [&bringUp]() -> GlContext& { return bringUp.context(); }};
+  colorMaking_ = std::async(std::launch::async, [inputs, setting = tracerAt ? *tracerAt : sceneLoc_] {
+    return makeColorRenderer(inputs, setting);
+  });
   sheetFrames_ = info_.contactSheet ? contactSheetFrames(info_.frames()) : std::set<uint64_t>{};
   const uint64_t owned = plan_.ownedEnd() - plan_.ownedBegin();
   for (uint64_t f = plan_.ownedBegin(); f < plan_.ownedEnd(); ++f) result_.resumedFrames += finished_.count(f);
@@ -383,7 +395,7 @@ void DatasetRun::renderProduct(Renderer& renderer, const std::shared_ptr<const F
     renderer.queueCoverage(list, cameraIndex, groups, slot);
   }
   // The colour too (a path tracer's on the GPU works while the previous product is collected).
-  color_->queue(list, cameraIndex, frameSampleSeed(options_.seed, frame, product), keepRadiance_, slot);
+  colorRenderer().queue(list, cameraIndex, frameSampleSeed(options_.seed, frame, product), keepRadiance_, slot);
   collectPending();
   pending_ = Pending{job, slot};
   result_.stages.render += since(renderStart);
@@ -400,9 +412,14 @@ void DatasetRun::collectPending() {
   renderer.collect(pending.slot, frame.passes);
   if (frame.hasMasks) renderer.collectCoverage(pending.slot, frame.masks);
   // Timed with the render stage around collectPending()'s callers.
-  color_->collect(pending.slot, frame.passes);
+  colorRenderer().collect(pending.slot, frame.passes);
   if (frame.scene->nextKnown) submit(pending.frame);
   else held_.push_back(pending.frame);  // until the next frame's poses are known
+}
+
+ColorRenderer& DatasetRun::colorRenderer() {
+  if (!color_) color_ = colorMaking_.get();
+  return *color_;
 }
 
 // Hands a collected product to the pool.

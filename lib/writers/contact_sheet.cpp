@@ -4,6 +4,8 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <future>
+#include <thread>
 
 #include "assets/image.h"
 #include "writers/colors.h"
@@ -176,14 +178,24 @@ std::vector<uint8_t> composeContactSheet(const std::vector<std::string>& tileFil
     int width, height;
     std::vector<uint8_t> rgb;
   };
-  std::vector<Tile> tiles;
-  for (const std::string& file : tileFiles) {
-    ImageRgba8 image = loadImageRgba8(file, TextureData::Color);
+  // The tiles are decoded on several threads (each into its own slot): at
+  // the end of a run this is time the user waits for.
+  const size_t n = tileFiles.size();
+  std::vector<Tile> tiles(n);
+  auto decode = [&](size_t i) {
+    ImageRgba8 image = loadImageRgba8(tileFiles[i], TextureData::Color);
     Tile t{int(image.width), int(image.height), std::vector<uint8_t>(size_t(image.width) * image.height * 3)};
     for (size_t p = 0; p < size_t(image.width) * image.height; ++p) std::copy_n(&image.pixels[p * 4], 3, &t.rgb[p * 3]);
-    tiles.push_back(std::move(t));
-  }
-  const size_t n = tiles.size();
+    tiles[i] = std::move(t);
+  };
+  const size_t workers = std::min<size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::future<void>> running;
+  for (size_t w = 1; w < workers; ++w)
+    running.push_back(std::async(std::launch::async, [&, w] {
+      for (size_t i = w; i < n; i += workers) decode(i);
+    }));
+  for (size_t i = 0; i < n; i += std::max<size_t>(workers, 1)) decode(i);
+  for (std::future<void>& r : running) r.get();  // rethrows a worker's failure
   const int columns = std::max(1, int(std::ceil(std::sqrt(double(n)))));
   const int rows = int((n + size_t(columns) - 1) / size_t(columns));
   int cellW = 1, cellH = 1;

@@ -36,10 +36,17 @@ namespace {
 // compiled program, so the GLSL alone decides it): 8 x 4, one 32-wide warp
 // per group, traced 28-31 % faster than 8 x 8 on an H100 (docs/performance.md).
 constexpr int kDenoiseGroup = 8;  // pt_denoise.glsl's local size, both axes
-// Samples per dispatch: about a million paths, so no single dispatch runs
-// long enough for a driver to call the device hung. Any split gives the
-// same sums (each pixel adds its samples in order).
-constexpr int64_t kPathsPerDispatch = 1 << 20;
+// Samples per dispatch: about 4 million paths (16 samples of 512 x 512
+// pixels, about 7 ms on an H100), so no dispatch runs long enough for a
+// display driver's watchdog to call the device hung. Each dispatch ends with
+// the GPU draining (its last warps run alone), so fewer are faster when the
+// tracer has the GPU alone (the demo at 64 samples: 28.4 ms a frame with 1
+// million paths a dispatch, 26.3 with 4, 25.3 with 16); but in a run the
+// rasterizer's label passes share the GPU and wait for the dispatch under
+// way: there 4 million did best (120 frames of the demo at 64 samples:
+// render 4.25 s, against 4.45 s with 1 million and 4.77 s with 16). Any
+// split gives the same sums (each pixel adds its samples in order).
+constexpr int64_t kPathsPerDispatch = 1 << 22;
 
 enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,

@@ -298,6 +298,21 @@ void GpuSceneData::packLights(const RenderList& list) {
   tables.resize(uploadedDome_ ? size_t(domeTables[3]) + uploadedDome_->image.height : 256);
   dome[3] = int32_t(tables.size());
   tables.insert(tables.end(), built.pickCdf().begin(), built.pickCdf().end());
+  tables.resize(size_t(dome[3]) + lights.size() + 1, 0.0f);  // the cdf's count + 1 entries, whatever it holds
+  // Then the lights a ray can meet, their number and their indices (as
+  // floats, exact below 2^24), so the kernel's intersect and block loops
+  // skip the others (distant and dome lights, spheres treated as points)
+  // without loading them.
+  const size_t hittableAt = tables.size();
+  tables.push_back(0.0f);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const LightKind kind = LightKind(lights[i].info[0]);
+    const bool point = lights[i].info[3] != 0;
+    if ((kind == LightKind::Sphere && !point) || kind == LightKind::Rect || kind == LightKind::Disk ||
+        kind == LightKind::Cylinder)
+      tables.push_back(float(i));
+  }
+  tables[hittableAt] = float(tables.size() - hittableAt - 1);
 }
 
 }  // namespace sdg

@@ -1,6 +1,6 @@
 #version 450
 // The GPU path tracer's kernel, part 1: buffers, parameters and the sample
-// streams. The parts are joined in this order (gpu_programs.cpp):
+// streams. The parts are joined in this order (gpu_path_tracer.cpp):
 // pt_common, pt_bsdf, pt_scene, pt_lights, pt_trace. Each is a port of the
 // CPU tracer's file named in its header; keep the two in step.
 layout(local_size_x = 8, local_size_y = 4) in;

@@ -293,10 +293,17 @@ vec3 responseScale(int light, vec3 fd, vec3 fs) {
 }
 
 // The closest emitting face of a light shape along the ray.
+// The lights a ray can meet (gpu_scene.cpp): after the pick cdf's count
+// + 1 entries, their number, then their indices in ascending order.
+int hittableLightsAt() { return params.dome.w + params.counts.y + 1; }
+
 bool intersectLights(vec3 o, vec3 d, float tMin, float tMax, out int light, out vec3 radiance) {
   light = -1;
   radiance = vec3(0.0);
-  for (int i = 0; i < params.counts.y; ++i) {
+  int at = hittableLightsAt();
+  int hittable = int(params.tables[at]);
+  for (int k = 1; k <= hittable; ++k) {
+    int i = int(params.tables[at + k]);
     float t;
     if (!hitShape(lights[i], o, d, tMin, tMax, t)) continue;
     light = i;
@@ -307,7 +314,10 @@ bool intersectLights(vec3 o, vec3 d, float tMin, float tMax, out int light, out 
 }
 
 bool lightsBlock(vec3 o, vec3 d, float tMin, float tMax, int except) {
-  for (int i = 0; i < params.counts.y; ++i) {
+  int at = hittableLightsAt();
+  int hittable = int(params.tables[at]);
+  for (int k = 1; k <= hittable; ++k) {
+    int i = int(params.tables[at + k]);
     float t;
     if (i != except && hitShape(lights[i], o, d, tMin, tMax, t)) return true;
   }

@@ -137,6 +137,9 @@ vec4 sampleMap(Material m, int map, Geometry g, vec3 n) {
   vec3 p = g.position;
   vec4 sum = vec4(0.0);
   for (int k = 0; k < (triplanar ? 3 : 1); ++k) {
+    // A projection of weight 0 adds exactly nothing (the texels are finite):
+    // on a floor or a wall square to the axes, two of the three.
+    if (triplanar && w[k] == 0.0) continue;
     vec2 uv = !triplanar ? g.uv : (k == 0 ? p.yz : (k == 1 ? p.xz : p.xy));
     vec4 t = sampleTexture(map, transformUv(m, uv));
     sum = k == 0 ? (triplanar ? t * w.x : t) : sum + t * w[k];

@@ -35,15 +35,20 @@ void main() {
   int width = params.size.x, height = params.size.y;
   if (pixel.x >= uint(width) || pixel.y >= uint(height)) return;
   uint index = pixel.y * uint(width) + pixel.x;
-  FilmPixel px = film[index];
   uint rays = 0u;
   bool labels = params.seed.w != 0u;
+  // Only the running sums live in registers through the loop; the label
+  // planes go to the film when the label ray meets its surface.
+  vec4 sum = vec4(0.0);
+  float luminanceSquares = 0.0;
   if (labels) {
     // Cleared here, then written by the label ray (the ray through the pixel's centre) if it meets a surface.
-    px.sum = vec4(0.0);
-    px.albedo = vec4(0.0);
-    px.normalDepth = vec4(0.0, 0.0, 0.0, kInf);
-    px.rays = uvec4(0u);
+    film[index].albedo = vec4(0.0);
+    film[index].normalDepth = vec4(0.0, 0.0, 0.0, kInf);
+    film[index].rays = uvec4(0u);
+  } else {
+    sum = film[index].sum;
+    luminanceSquares = film[index].albedo.w;
   }
   Sampler sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y, params.sampling.yz);
   int maxBounces = params.counts.x;
@@ -54,14 +59,17 @@ void main() {
   // The path's state. pathLive: origin and direction hold the path's next ray.
   bool pathLive = false, label = false;
   vec3 origin = vec3(0.0), direction = vec3(0.0);
-  float tMin = 0.0, tMax = 0.0;
+  float tMax = 0.0;
   vec3 radiance = vec3(0.0), beta = vec3(1.0);
   float pdfBsdf = 0.0;
   vec3 previousPoint = vec3(0.0), previousNormal = vec3(0.0);
   int depth = 0;
-  // The shadow ray pending (shadow true): from where, along what, how far, and what it adds if nothing blocks it.
+  // The shadow ray pending (shadow true): from `origin` (the next ray of a path that goes on starts at
+  // the same point), along what, how far, and what it adds if nothing blocks it. The path's ray has no
+  // near distance of its own (its origin is offset from the surface instead): every register the loop
+  // keeps costs invocations in flight.
   bool shadow = false;
-  vec3 shadowOrigin = vec3(0.0), shadowDirection = vec3(0.0), shadowRadiance = vec3(0.0);
+  vec3 shadowDirection = vec3(0.0), shadowRadiance = vec3(0.0);
   float shadowMax = 0.0;
   int shadowLight = -1;
   // The previous vertex's BSDF lobes along the sampled direction, where a light scales them apart.
@@ -76,11 +84,11 @@ void main() {
         // The path is done (its last shadow ray traced): its sample joins the pixel's sum, in sample order.
         if (unfinished && !label) {
           if (any(isnan(radiance)) || any(isinf(radiance))) {
-            px.sum.w += 1.0;
+            sum.w += 1.0;
           } else {
-            px.sum.xyz += radiance;
+            sum.xyz += radiance;
             float l = luminance(radiance);
-            px.albedo.w += l * l;  // for the per-pixel variance (PathTracedFrame::variance)
+            luminanceSquares += l * l;  // for the per-pixel variance (PathTracedFrame::variance)
           }
         }
         if (unfinished) s++;
@@ -94,7 +102,6 @@ void main() {
           jitter = next2D(sampler);
         }
         cameraRay(vec2(pixel) + jitter, origin, direction, tMax);
-        tMin = 0.0;
         radiance = vec3(0.0);
         beta = vec3(1.0);
         pdfBsdf = 0.0;
@@ -105,11 +112,11 @@ void main() {
       }
       bool isShadow = pass == 0;
       Hit traced;
-      bool met = traceScene(isShadow ? shadowOrigin : origin, isShadow ? shadowDirection : direction,
-                            isShadow ? 0.0 : tMin, isShadow ? shadowMax : tMax, isShadow, traced);
+      bool met = traceScene(origin, isShadow ? shadowDirection : direction,
+                            0.0, isShadow ? shadowMax : tMax, isShadow, traced);
       rays++;
       if (isShadow) {
-        if (!met && !lightsBlock(shadowOrigin, shadowDirection, 0.0, shadowMax, shadowLight)) radiance += shadowRadiance;
+        if (!met && !lightsBlock(origin, shadowDirection, 0.0, shadowMax, shadowLight)) radiance += shadowRadiance;
         shadow = false;
       } else {
         hit = traced;
@@ -123,7 +130,7 @@ void main() {
     vec3 next = vec3(0.0), wi = vec3(0.0);
     int light;
     vec3 lightRadiance;
-    if (depth > 0 && intersectLights(origin, direction, tMin, found ? hit.t : tMax, light, lightRadiance)) {
+    if (depth > 0 && intersectLights(origin, direction, 0.0, found ? hit.t : tMax, light, lightRadiance)) {
       float weight = powerHeuristic(pdfBsdf, lightPdf(light, previousPoint, previousNormal, direction));
       if (lobeMultipliers) lightRadiance *= responseScale(light, previousDiffuse, previousSpecular);
       radiance += beta * lightRadiance * weight;
@@ -143,9 +150,9 @@ void main() {
       vec3 wo = -direction;
       Shaded surface = shadeSurface(materialOf(hit.instance, g.part), g, wo);
       if (label) {
-        px.albedo = vec4(surface.albedo, 0.0);
-        px.normalDepth = vec4(surface.normal, length(g.position - params.eye.xyz));
-        px.rays.w = uint(instances[hit.instance].ids.w);
+        film[index].albedo.xyz = surface.albedo;
+        film[index].normalDepth = vec4(surface.normal, length(g.position - params.eye.xyz));
+        film[index].rays.w = uint(instances[hit.instance].ids.w);
       } else {
         vec3 side = dot(g.geometricNormal, wo) < 0.0 ? -g.geometricNormal : g.geometricNormal;
         Frame shading = frameFromNormal(surface.normal);
@@ -162,7 +169,7 @@ void main() {
           vec3 f = lightResponse(ls.light, fd, fs);
           if (maxComponent(f) > 0.0) {
             shadow = true;
-            shadowOrigin = next;
+            origin = next;  // the shadow ray's origin; the path's next ray starts there too
             shadowMax = isinf(ls.distance) ? kInf : ls.distance * (1.0 - 1e-4);
             shadowDirection = ls.direction;
             shadowLight = ls.light;
@@ -194,16 +201,18 @@ void main() {
     if (continues) {  // the next bounce, traced after the shadow ray
       origin = next;
       direction = wi;
-      tMin = 0.0;
       tMax = kInf;
       depth++;
     } else {
       pathLive = false;  // finished once its shadow ray, if any, is traced
     }
   }
-  px.rays.z += uint(params.size.w) + (labels ? 1u : 0u);
-  uint low = px.rays.x + rays;
-  px.rays.y += low < rays ? 1u : 0u;
-  px.rays.x = low;
-  film[index] = px;
+  film[index].sum = sum;
+  film[index].albedo.w = luminanceSquares;
+  uvec3 counts = film[index].rays.xyz;
+  counts.z += uint(params.size.w) + (labels ? 1u : 0u);
+  uint low = counts.x + rays;
+  counts.y += low < rays ? 1u : 0u;
+  counts.x = low;
+  film[index].rays.xyz = counts;
 }
