@@ -128,6 +128,12 @@ TEST_CASE("sampler: the Z-order fits a tile's pixels and samples in 32-bit indic
     }
     CHECK(layout.indexBase(last + 1, last + 1) == 0);
   }
+  // Tiles: 64 x 64 pixels, 8 x 8 at 2^25 samples (the CPU tracer's 16 x 16 tiles then span four).
+  CHECK(SamplerTile(1, 64, 70, 10).holds(127, 63));
+  CHECK_FALSE(SamplerTile(1, 64, 70, 10).holds(128, 10));
+  CHECK_FALSE(SamplerTile(1, 64, 70, 10).holds(63, 10));
+  CHECK(SamplerTile(1, 1u << 25, 13, 5).holds(8, 7));
+  CHECK_FALSE(SamplerTile(1, 1u << 25, 13, 5).holds(16, 5));
   // Morton order: each aligned 2^k x 2^k block of pixels is one aligned block of 4^k codes.
   const SampleLayout layout(1);
   std::vector<uint32_t> codes;

@@ -159,7 +159,7 @@ uint mix32(uint h) {
   return h ^ (h >> 16);
 }
 // The slot's shuffled index (SamplerTile::workOut's keys, worked out here at
-// each draw); seeds: the index shuffle's two seeds, the x seed's source.
+// each draw); seeds: the index shuffle's two seeds, whose hashes seed the coordinates.
 uint shuffledIndex(inout Sampler s, out uvec2 seeds) {
   s.slot++;
   seeds = mixBits(add64(s.tileSeed, mul64(uvec2(s.slot, 0u), uvec2(0x7f4a7c15u, 0x9e3779b9u))));
