@@ -197,6 +197,24 @@ TEST_CASE("gpu path tracer: byte-identical reruns, whatever the samples per disp
   CHECK(gpu->stats().rays > gpu->stats().cameraRays);
 }
 
+TEST_CASE("gpu path tracer: a pixel's every sample counts, however many (llvmpipe cuts long invocations short)",
+          "[pathtrace][gpu]") {
+  // Few pixels and many samples: the default split would give one dispatch
+  // with every sample, whose invocations llvmpipe stops after 65,535 loop
+  // iterations (the frame came out a quarter as bright before the tracer
+  // capped the samples per dispatch on a software device).
+  PathTraceSettings settings;
+  settings.samples = 2048;
+  settings.maxBounces = 8;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  INFO("device: " << gpu->device());
+  const RenderList list = renderListOf(kCornell);
+  const PathTracedFrame cpu = trace(list, 4, 4, settings, 3), onGpu = gpuTrace(*gpu, list, 4, 4, 3);
+  INFO("means: cpu " << meanOf(cpu) << " gpu " << meanOf(onGpu));
+  CHECK(std::abs(meanOf(onGpu) / meanOf(cpu) - 1) < 0.01);
+}
+
 TEST_CASE("gpu path tracer: a moved instance moves in the image; the meshes stay uploaded", "[pathtrace][gpu]") {
   PathTraceSettings settings;
   settings.samples = 1;

@@ -47,6 +47,13 @@ constexpr int kDenoiseGroup = 8;  // pt_denoise.glsl's local size, both axes
 // render 4.25 s, against 4.45 s with 1 million and 4.77 s with 16). Any
 // split gives the same sums (each pixel adds its samples in order).
 constexpr int64_t kPathsPerDispatch = 1 << 22;
+// Mesa's llvmpipe ends a shader invocation's loops after 65,535 iterations
+// in all (a guard against endless loops), silently: a pixel's later samples
+// would be lost (32 x 32 pixels of the Cornell box at 1,024 samples, all in
+// one dispatch, kept about a quarter of them). A sample takes a few hundred
+// iterations there (each traversal step is one), so a software device gets
+// at most 4 a dispatch: a wide margin, for about 20 % more time.
+constexpr int kSoftwareSamplesPerDispatch = 4;
 
 enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
@@ -464,8 +471,9 @@ struct GpuPathTracer::Impl {
       g.glQueryCounter(timestamps[0], GL_TIMESTAMP);
     }
     const auto traceStart = std::chrono::steady_clock::now();
-    const int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
-                                                  : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
+    int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
+                                            : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
+    if (!context->onGpu()) perDispatch = std::min(perDispatch, kSoftwareSamplesPerDispatch);
     const GLuint groupsX = GLuint((width + program.group[0] - 1) / program.group[0]),
                  groupsY = GLuint((height + program.group[1] - 1) / program.group[1]);
     for (int first = 0; first < samples; first += perDispatch) {
