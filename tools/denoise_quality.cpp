@@ -16,10 +16,11 @@
 //   denoiser's bias; pairing cancels the noise the filter leaves in place,
 //   so it resolves far below the floor above and needs no reference;
 // - the denoiser's time per frame on THREADS threads (ms; median, min, max).
-//   sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial]
+//   sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial] [KEY=VALUE...]
 // SEEDS defaults to 3; REFERENCE 0 skips the reference (paired figures
 // only); `spatial` withholds the tracer's per-pixel variance (the
-// neighbourhood estimate).
+// neighbourhood estimate); iterations=, sigmaColor=, sigmaNormal= and
+// sigmaDepth= set the denoiser's parameters (DenoiseSettings) to try others.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -79,14 +80,32 @@ void print(const std::string& what, const std::string& name, std::vector<double>
 
 int main(int argc, char** argv) {
   if (argc < 7) {
-    std::fprintf(stderr, "usage: sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial]\n");
+    std::fprintf(stderr, "usage: sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial] "
+                         "[iterations=N] [sigmaColor=X] [sigmaNormal=X] [sigmaDepth=X]\n");
     return 2;
   }
   const std::string file = argv[1];
   const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
   const int referenceSamples = std::atoi(argv[5]), threads = std::atoi(argv[6]);
   const int seeds = argc > 7 ? std::max(1, std::atoi(argv[7])) : 3;
-  const bool spatial = argc > 8 && std::string(argv[8]) == "spatial";
+  bool spatial = false;
+  DenoiseSettings ds;
+  for (int a = 8; a < argc; ++a) {
+    const std::string arg = argv[a];
+    const size_t eq = arg.find('=');
+    const std::string key = arg.substr(0, eq);
+    const double value = eq == std::string::npos ? 0.0 : std::atof(arg.c_str() + eq + 1);
+    if (arg == "spatial") spatial = true;
+    else if (key == "iterations" && eq != std::string::npos) ds.iterations = int(value);
+    else if (key == "sigmaColor" && eq != std::string::npos) ds.sigmaColor = float(value);
+    else if (key == "sigmaNormal" && eq != std::string::npos) ds.sigmaNormal = float(value);
+    else if (key == "sigmaDepth" && eq != std::string::npos) ds.sigmaDepth = float(value);
+    else {
+      std::fprintf(stderr, "sdg_denoise_quality: unknown argument '%s' (expected spatial or iterations=, sigmaColor=, "
+                           "sigmaNormal=, sigmaDepth=)\n", arg.c_str());
+      return 2;
+    }
+  }
   if (width < kBlock || height < kBlock || samples < 1 || referenceSamples < 0 || threads < 1) {
     std::fprintf(stderr, "sdg_denoise_quality: WIDTH and HEIGHT at least %d, SAMPLES and THREADS at least 1\n", kBlock);
     return 2;
@@ -100,7 +119,6 @@ int main(int argc, char** argv) {
     PathTracer(assets, PathTraceSettings{referenceSamples, bounces, threads})
         .render(list, 0, width, height, 1000, reference);
   PathTracer tracer(assets, PathTraceSettings{samples, bounces, threads});
-  DenoiseSettings ds;
   ds.threads = unsigned(threads);
   Denoiser denoiser(ds);
   std::vector<double> noisyBlock, noisyMae, denoisedBlock, denoisedMae;  // one per seed
@@ -130,7 +148,10 @@ int main(int argc, char** argv) {
   const std::string what = file.substr(file.find_last_of('/') + 1) + " " + std::to_string(width) + "x" +
                            std::to_string(height) + ", " + std::to_string(samples) + " spp" +
                            (referenceSamples > 0 ? " against " + std::to_string(referenceSamples) + " spp" : "") +
-                           (spatial ? ", spatial noise estimate" : "");
+                           (spatial ? ", spatial noise estimate" : "") + ", denoiser " +
+                           std::to_string(ds.iterations) + " passes, sigmaColor " + std::to_string(ds.sigmaColor) +
+                           ", sigmaNormal " + std::to_string(ds.sigmaNormal) + ", sigmaDepth " +
+                           std::to_string(ds.sigmaDepth);
   const std::string frames = std::to_string(seeds) + " frames";
   if (referenceSamples > 0) {
     print(what, "without the denoiser, block error of one frame", noisyBlock);
