@@ -238,7 +238,7 @@ TEST_CASE("image formats: float to 8 bits: Color encodes to sRGB, Linear scales,
   }
 }
 
-TEST_CASE("image formats: memory decodes as the file does; the name's extension is only a hint", "[assets][images]") {
+TEST_CASE("image formats: memory decodes as the file does, the name's extension is only a hint", "[assets][images]") {
   for (const char* name : {"pattern.png", "pattern.jpg", "pattern16.tif", "pattern_half.exr", "pattern.webp"}) {
     CAPTURE(name);
     const std::vector<char> bytes = fileBytes(kFormats + name);

@@ -242,7 +242,7 @@ prims:
   CHECK(shot.red(95, 50) > 20);
 }
 
-TEST_CASE("render: a flat card above the floor casts its shadow; the floor under everything casts none",
+TEST_CASE("render: a flat card above the floor casts its shadow, the floor under everything casts none",
           "[render][analytic][shadows]") {
   // Shadow maps leave out flat items with nothing behind them (the floor
   // here) but must keep a card with the floor behind it.

@@ -162,7 +162,7 @@ TEST_CASE("dome: one bright patch lights a diffuse plane with the analytic irrad
   CHECK(centralRadiance(frames[2], 0, settings.exposureScale) < 0.01 * facing);
 }
 
-TEST_CASE("material maps: a map with influence 1 equals the same constant; ORM packs roughness and metallic",
+TEST_CASE("material maps: a map with influence 1 equals the same constant, ORM packs roughness and metallic",
           "[render][maps]") {
   const fs::path dir = scratchFolder("maps");
   auto grey = [](uint8_t v) { return [v](int, int) { return std::array<uint8_t, 4>{v, v, v, 255}; }; };

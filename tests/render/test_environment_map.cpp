@@ -109,7 +109,7 @@ Eigen::Vector2f lutAt(const SplitSumLut& lut, int i, int j) {
 
 }  // namespace
 
-TEST_CASE("environment: texel solid angles cover the sphere; bilinear reads wrap in u, clamp in v", "[render][environment]") {
+TEST_CASE("environment: texel solid angles cover the sphere, bilinear reads wrap in u, clamp in v", "[render][environment]") {
   double total = 0;
   for (int y = 0; y < 1000; ++y) total += 2000 * latLongTexelSolidAngle(2000, 1000, y);
   CHECK(total == Approx(4.0 * kPi).epsilon(1e-12));

@@ -61,7 +61,7 @@ TEST_CASE("meshes: bad files fail with the file named", "[render][meshes]") {
   CHECK_THROWS_WITH(loadMeshFile("/nonexistent/x.obj"), Catch::Contains("/nonexistent/x.obj"));
 }
 
-TEST_CASE("textures: PNG variants load as RGBA8; absurd sizes and corrupt files are refused", "[render][textures]") {
+TEST_CASE("textures: PNG variants load as RGBA8, absurd sizes and corrupt files are refused", "[render][textures]") {
   ImageRgba8 split = loadImageRgba8(SDG_SOURCE_DIR "/tests/data/images/split.png", TextureData::Color);
   CHECK(split.width == 64);
   CHECK(split.pixels.size() == 64u * 64u * 4u);

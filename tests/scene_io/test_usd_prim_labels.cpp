@@ -193,7 +193,7 @@ def Cube "Box"
   CHECK_THAT(l.diag.all()[1].message, Catch::Contains("did you mean"));
 }
 
-TEST_CASE("usd labels: unknown scripts are located errors; sdgbehave scripts are reported for the loader",
+TEST_CASE("usd labels: unknown scripts are located errors, sdgbehave scripts are reported for the loader",
           "[scene_io][usd]") {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sdg_usd_labels_test";
   std::filesystem::create_directories(dir);

@@ -35,7 +35,7 @@ std::string firstProblem(const std::vector<std::string>& overrides) {
 
 }  // namespace
 
-TEST_CASE("usd variants: the authored selection applies; a set without one applies no variant", "[usd_import][variants]") {
+TEST_CASE("usd variants: the authored selection applies, a set without one applies no variant", "[usd_import][variants]") {
   const Scene scene = importWith({});
   CHECK(displayColor(scene).isApprox(Vec3f(0.1f, 0.2f, 0.9f)));
   CHECK(scene.stage.find("/World/Prop")->findAttribute("size") == nullptr);  // the fallback size

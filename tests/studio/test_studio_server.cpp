@@ -266,7 +266,7 @@ TEST_CASE("studio server: bad encodings, sizes and methods get their own 4xx and
   }
 }
 
-TEST_CASE("studio server: an edit validate would refuse is a 4xx; text and preview stay as they were", "[studio]") {
+TEST_CASE("studio server: an edit validate would refuse is a 4xx, text and preview stay as they were", "[studio]") {
   Studio studio("refused");
   writeFile(studio.dir / "scene" / "props" / "note.glb", "This is a note, not a mesh.\n");
   writeFile(studio.dir / "scene" / "props" / "empty.glb", "");

@@ -41,7 +41,7 @@ TEST_CASE("studio text edit: new keys go into block maps at the siblings' indent
   CHECK(out.find("      rotationRandomizer:\n    doubleSided: true\n\n  # the light\n") != std::string::npos);
 }
 
-TEST_CASE("studio text edit: a null value becomes a flow map; flow maps take new keys", "[studio]") {
+TEST_CASE("studio text edit: a null value becomes a flow map, flow maps take new keys", "[studio]") {
   std::string out = applyTextEdit(kScene, {"/World/Box", {"behaviors", "rotationRandomizer", "interval"}, "3"});
   CHECK(out.find("      rotationRandomizer: {interval: 3}\n") != std::string::npos);
   out = applyTextEdit(kScene, {"/World/Sun", {"inputs:exposure"}, "1.0"});

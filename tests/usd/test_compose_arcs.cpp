@@ -34,7 +34,7 @@ std::vector<std::string> names(std::initializer_list<const char*> items) { retur
 
 }  // namespace
 
-TEST_CASE("compose: local opinions over a reference; defaultPrim; provenance", "[compose]") {
+TEST_CASE("compose: local opinions over a reference, defaultPrim, provenance", "[compose]") {
   MemoryLayers layers;
   layers.texts["asset.usda"] = kAsset;
   layers.texts["root.usda"] = R"(#usda 1.0

@@ -215,7 +215,7 @@ TEST_CASE("gpu path tracer: a pixel's every sample counts, however many (llvmpip
   CHECK(std::abs(meanOf(onGpu) / meanOf(cpu) - 1) < 0.01);
 }
 
-TEST_CASE("gpu path tracer: a moved instance moves in the image; the meshes stay uploaded", "[pathtrace][gpu]") {
+TEST_CASE("gpu path tracer: a moved instance moves in the image, the meshes stay uploaded", "[pathtrace][gpu]") {
   PathTraceSettings settings;
   settings.samples = 1;
   settings.maxBounces = 1;
