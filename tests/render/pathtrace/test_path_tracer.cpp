@@ -11,6 +11,8 @@
 // has its own tests.
 #include "pt_test_scenes.h"
 
+#include "render/pathtrace/pt_lights.h"
+
 #include <numeric>
 
 using namespace sdg;
@@ -379,4 +381,39 @@ prims:
   const double slope = sxy / sxx;
   INFO("slope " << slope << ", RMSE at 16: " << std::exp(logError.front()) << ", at 256: " << std::exp(logError.back()));
   CHECK(slope == Approx(-0.5).margin(0.1));
+}
+
+TEST_CASE("path tracer lights: a dome without a map gets no shadow rays, its light comes from escaping paths at full weight",
+          "[pathtrace]") {
+  // A uniform dome's shadow rays would follow the cosine over the
+  // hemisphere, what a diffuse BSDF's own direction draws already: they are
+  // left to the other lights (pt_lights.cpp).
+  const RenderList list = renderListOf(
+      "version: 1\nprims:\n  /Floor: {type: Plane, width: 4, length: 4}\n"
+      "  /Sky: {type: DomeLight, inputs:intensity: 3, inputs:color: [1, 0.5, 0.25]}\n"
+      "  /Sun: {type: DistantLight, inputs:intensity: 2, inputs:angle: 1, rotateXYZ: [20, 0, 0]}\n");
+  PtLights lights;
+  lights.build(list, Eigen::AlignedBox3f(Vec3f(-2, -2, 0), Vec3f(2, 2, 0.1f)),
+               [](const RenderLight&) -> const PtDomeMap* { return nullptr; });
+  REQUIRE(lights.lights().size() == 2);
+  int dome = -1, sun = -1;
+  for (size_t i = 0; i < lights.lights().size(); ++i)
+    (lights.lights()[i].kind == LightKind::Dome ? dome : sun) = int(i);
+  REQUIRE(dome >= 0);
+  REQUIRE(sun >= 0);
+  CHECK(lights.lights()[size_t(dome)].pick == 0.0f);
+  CHECK(lights.lights()[size_t(sun)].pick == 1.0f);
+  const Vec3f p(0, 0, 0), n(0, 0, 1);
+  for (int k = 0; k < 256; ++k) {
+    LightSample s;
+    if (lights.sample(p, n, (float(k) + 0.5f) / 256.0f, Vec2f(0.3f, 0.7f), s)) CHECK(s.light == sun);
+  }
+  // A path escaping upward, away from the sun's cone: all of the dome's radiance, whatever the BSDF's density.
+  const Vec3f up(0, 0, 1);
+  for (float bsdfPdf : {0.05f, 0.3f, 2.0f}) {
+    const Vec3f got = lights.escaped(p, n, up, bsdfPdf);
+    CHECK(got.x() == Approx(3.0f).epsilon(1e-6));
+    CHECK(got.y() == Approx(1.5f).epsilon(1e-6));
+    CHECK(got.z() == Approx(0.75f).epsilon(1e-6));
+  }
 }
