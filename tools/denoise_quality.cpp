@@ -19,8 +19,8 @@
 //   sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial] [KEY=VALUE...]
 // SEEDS defaults to 3; REFERENCE 0 skips the reference (paired figures
 // only); `spatial` withholds the tracer's per-pixel variance (the
-// neighbourhood estimate); iterations=, sigmaColor=, sigmaNormal= and
-// sigmaDepth= set the denoiser's parameters (DenoiseSettings) to try others.
+// neighbourhood estimate); iterations=, sigmaColor=, sigmaColorDecay=,
+// sigmaNormal= and sigmaDepth= set the denoiser's parameters (DenoiseSettings) to try others.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -81,7 +81,7 @@ void print(const std::string& what, const std::string& name, std::vector<double>
 int main(int argc, char** argv) {
   if (argc < 7) {
     std::fprintf(stderr, "usage: sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial] "
-                         "[iterations=N] [sigmaColor=X] [sigmaNormal=X] [sigmaDepth=X]\n");
+                         "[iterations=N] [sigmaColor=X] [sigmaColorDecay=X] [sigmaNormal=X] [sigmaDepth=X]\n");
     return 2;
   }
   const std::string file = argv[1];
@@ -100,9 +100,10 @@ int main(int argc, char** argv) {
     else if (key == "sigmaColor" && eq != std::string::npos) ds.sigmaColor = float(value);
     else if (key == "sigmaNormal" && eq != std::string::npos) ds.sigmaNormal = float(value);
     else if (key == "sigmaDepth" && eq != std::string::npos) ds.sigmaDepth = float(value);
+    else if (key == "sigmaColorDecay" && eq != std::string::npos) ds.sigmaColorDecay = float(value);
     else {
       std::fprintf(stderr, "sdg_denoise_quality: unknown argument '%s' (expected spatial or iterations=, sigmaColor=, "
-                           "sigmaNormal=, sigmaDepth=)\n", arg.c_str());
+                           "sigmaColorDecay=, sigmaNormal=, sigmaDepth=)\n", arg.c_str());
       return 2;
     }
   }
@@ -151,7 +152,7 @@ int main(int argc, char** argv) {
                            (spatial ? ", spatial noise estimate" : "") + ", denoiser " +
                            std::to_string(ds.iterations) + " passes, sigmaColor " + std::to_string(ds.sigmaColor) +
                            ", sigmaNormal " + std::to_string(ds.sigmaNormal) + ", sigmaDepth " +
-                           std::to_string(ds.sigmaDepth);
+                           std::to_string(ds.sigmaDepth) + ", sigmaColorDecay " + std::to_string(ds.sigmaColorDecay);
   const std::string frames = std::to_string(seeds) + " frames";
   if (referenceSamples > 0) {
     print(what, "without the denoiser, block error of one frame", noisyBlock);

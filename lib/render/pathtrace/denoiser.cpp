@@ -64,6 +64,13 @@ bool hasSurface(const DenoiseInputs& in, size_t p) {
 
 }  // namespace
 
+float denoisePassSigmaColor(const DenoiseSettings& settings, int iteration, bool perPixelVariance) {
+  // Without a carried variance each pass is assumed to leave half the
+  // noise's variance: the scale shrinks with it.
+  const float noiseScale = perPixelVariance ? 1.0f : std::pow(0.5f, 0.5f * float(iteration));
+  return settings.sigmaColor * noiseScale * std::pow(settings.sigmaColorDecay, float(iteration));
+}
+
 Denoiser::Denoiser(DenoiseSettings settings) : settings_(settings) {
   if (settings.iterations < 0 || settings.iterations > kMaxIterations)
     throw std::invalid_argument("Denoiser: iterations must be 0 to " + std::to_string(kMaxIterations));
@@ -243,10 +250,7 @@ Denoiser::PassView Denoiser::passView(int iteration, const float* source, const 
   // The first pass with a per-pixel variance compares the pixels' 3 x 3
   // means, not their single noisy values (see denoiser.h).
   view.guide = varianceSource && iteration == 0 ? guide_.data() : nullptr;
-  // Without a carried variance each pass is assumed to leave half the
-  // noise's variance: the scale shrinks with it.
-  view.sigmaColor =
-      varianceSource ? settings_.sigmaColor : settings_.sigmaColor * std::pow(0.5f, 0.5f * float(iteration));
+  view.sigmaColor = denoisePassSigmaColor(settings_, iteration, varianceSource != nullptr);
   return view;
 }
 

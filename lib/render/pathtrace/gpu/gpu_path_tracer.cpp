@@ -335,7 +335,6 @@ struct GpuPathTracer::Impl {
     set(kDenoiseHeight, height);
     set(kDenoiseSamples, samples);
     set(kUseVariance, denoiseWithVariance ? 1 : 0);
-    setF(kSigmaColor, denoise->sigmaColor);
     setF(kSigmaNormal, denoise->sigmaNormal);
     setF(kSigmaDepth, denoise->sigmaDepth);
     auto pass = [&](int which, int iteration, int source) {
@@ -349,6 +348,7 @@ struct GpuPathTracer::Impl {
     pass(1, 0, 0);
     int source = 0;
     for (int i = 0; i < denoise->iterations; ++i, source = 1 - source) {
+      setF(kSigmaColor, denoisePassSigmaColor(*denoise, i, denoiseWithVariance));
       pass(4, i, source);  // the weight sums W
       pass(2, i, source);  // the filter, which reads its neighbours' W
     }

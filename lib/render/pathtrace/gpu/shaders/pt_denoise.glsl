@@ -80,9 +80,8 @@ float tapWeight(TapPixel p, TapPixel q, int kx, int ky, int step) {
   float expectedDz = abs(p.aux.x * dx + p.aux.y * dy) + abs(q.aux.x * dx + q.aux.y * dy);
   float depthScale =
       0.5 * sigmaDepth * expectedDz + 0.5 * kRelativeDepthTolerance * (abs(p.guide.w) + abs(q.guide.w));
-  // Without a carried variance each pass is assumed to leave half the noise's variance.
-  float scaledSigma = useVariance != 0 ? sigmaColor : sigmaColor * pow(0.5, 0.5 * float(iteration));
-  float colorScale = 0.5 * scaledSigma * (p.noise + q.noise) + 0.005 * (abs(p.level) + abs(q.level)) + 1e-6;
+  // sigmaColor: this iteration's scale (denoiser.h's denoisePassSigmaColor, set per iteration).
+  float colorScale = 0.5 * sigmaColor * (p.noise + q.noise) + 0.005 * (abs(p.level) + abs(q.level)) + 1e-6;
   return kKernel[kx + 2] * kKernel[ky + 2] *
          exp(sigmaNormal * log(cosine) - dz / max(depthScale, kFloatMin) - abs(q.level - p.level) / colorScale);
 }
