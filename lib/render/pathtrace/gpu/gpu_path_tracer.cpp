@@ -50,10 +50,11 @@ constexpr int64_t kPathsPerDispatch = 1 << 22;
 // Mesa's llvmpipe ends a shader invocation's loops after 65,535 iterations
 // in all (a guard against endless loops), silently: a pixel's later samples
 // would be lost (32 x 32 pixels of the Cornell box at 1,024 samples, all in
-// one dispatch, kept about a quarter of them). A sample takes a few hundred
-// iterations there (each traversal step is one), so a software device gets
-// at most 4 a dispatch: a wide margin, for about 20 % more time.
-constexpr int kSoftwareSamplesPerDispatch = 4;
+// one dispatch, kept about a quarter of them). A path vertex takes a few
+// dozen iterations there (each traversal step is one), so a software device
+// gets at most 36 vertices' worth of samples a dispatch: 4 samples at the
+// default 8 bounces, 1 at 32; a wide margin, for about 20 % more time.
+constexpr int kSoftwareVerticesPerDispatch = 36;
 
 enum Binding : GLuint {
   kParams = 0, kFilm, kNodes, kTopNodes, kTriangles, kVertices, kIndices, kMeshes, kInstances, kMaterials,
@@ -473,7 +474,8 @@ struct GpuPathTracer::Impl {
     const auto traceStart = std::chrono::steady_clock::now();
     int perDispatch = samplesPerDispatch > 0 ? std::min(samplesPerDispatch, samples)
                                             : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
-    if (!context->onGpu()) perDispatch = std::min(perDispatch, kSoftwareSamplesPerDispatch);
+    if (!context->onGpu())
+      perDispatch = std::min(perDispatch, std::max(1, kSoftwareVerticesPerDispatch / (settings.maxBounces + 1)));
     const GLuint groupsX = GLuint((width + program.group[0] - 1) / program.group[0]),
                  groupsY = GLuint((height + program.group[1] - 1) / program.group[1]);
     for (int first = 0; first < samples; first += perDispatch) {
