@@ -21,12 +21,10 @@
 #include <string>
 #include <vector>
 
-#include "assets/asset_resolver.h"
-#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/pathtrace/denoiser.h"
 #include "render/pathtrace/gpu/gpu_path_tracer.h"
 #include "render/pathtrace/path_tracer.h"
-#include "scene_io/scene_loader.h"
+#include "tool_scene.h"
 
 using namespace sdg;
 
@@ -60,7 +58,7 @@ void printGpuDisplayFigures(GpuPathTracer& tracer, const RenderList& list, int w
               what.c_str(), kFrames, queued, queued, queued);
 }
 
-int main(int argc, char** argv) {
+int runMain(int argc, char** argv) {
   if (argc < 6) {
     std::fprintf(stderr, "usage: sdg_bench_pathtrace SCENE WIDTH HEIGHT SAMPLES THREADS [denoise] [gpu] [replay]\n");
     return 2;
@@ -70,17 +68,19 @@ int main(int argc, char** argv) {
   const int threads = std::atoi(argv[5]);
   bool denoise = false, gpu = false, replay = false;
   for (int a = 6; a < argc; ++a) {
-    replay = replay || std::string(argv[a]) == "replay";
-    denoise = denoise || std::string(argv[a]) == "denoise";
-    gpu = gpu || std::string(argv[a]) == "gpu";
+    const std::string flag = argv[a];
+    if (flag == "replay") replay = true;
+    else if (flag == "denoise") denoise = true;
+    else if (flag == "gpu") gpu = true;
+    else {
+      std::fprintf(stderr, "sdg_bench_pathtrace: unknown argument '%s' (expected denoise, gpu or replay)\n", argv[a]);
+      return 2;
+    }
   }
-  Scene scene = loadScene(file, builtinRegistry().catalog());
-  const RenderList list = buildRenderList(scene.stage);
-  const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
-  PathTraceSettings settings;
-  settings.samples = samples;
-  settings.maxBounces = int(scene.render.getUInt("max_bounces"));
-  settings.threads = threads;
+  const ToolScene loaded = loadToolScene(file);
+  const RenderList& list = loaded.list;
+  const AssetResolver& assets = loaded.assets;
+  const PathTraceSettings settings = loaded.tracing(samples, threads);
   PathTracer tracer(assets, settings);
   std::unique_ptr<GpuPathTracer> gpuTracer = gpu ? std::make_unique<GpuPathTracer>(assets, settings) : nullptr;
   if (gpuTracer && denoise) gpuTracer->setDenoiser(DenoiseSettings{});  // on the GPU, before the read-back
@@ -155,3 +155,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+int main(int argc, char** argv) { return runTool("sdg_bench_pathtrace", [&] { return runMain(argc, argv); }); }

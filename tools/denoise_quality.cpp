@@ -29,11 +29,9 @@
 #include <string>
 #include <vector>
 
-#include "assets/asset_resolver.h"
-#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/pathtrace/denoiser.h"
 #include "render/pathtrace/path_tracer.h"
-#include "scene_io/scene_loader.h"
+#include "tool_scene.h"
 
 using namespace sdg;
 
@@ -78,7 +76,7 @@ void print(const std::string& what, const std::string& name, std::vector<double>
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int runMain(int argc, char** argv) {
   if (argc < 7) {
     std::fprintf(stderr, "usage: sdg_denoise_quality SCENE WIDTH HEIGHT SAMPLES REFERENCE THREADS [SEEDS] [spatial] "
                          "[iterations=N] [sigmaColor=X] [sigmaColorDecay=X] [sigmaNormal=X] [sigmaDepth=X]\n");
@@ -111,15 +109,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "sdg_denoise_quality: WIDTH and HEIGHT at least %d, SAMPLES and THREADS at least 1\n", kBlock);
     return 2;
   }
-  Scene scene = loadScene(file, builtinRegistry().catalog());
-  const RenderList list = buildRenderList(scene.stage);
-  const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
-  const int bounces = int(scene.render.getUInt("max_bounces"));
+  if (ds.iterations < 0 || ds.iterations > 16) {
+    std::fprintf(stderr, "sdg_denoise_quality: iterations must be 0 to 16, got %d\n", ds.iterations);
+    return 2;
+  }
+  const ToolScene loaded = loadToolScene(file);
+  const RenderList& list = loaded.list;
+  const AssetResolver& assets = loaded.assets;
   PathTracedFrame reference;
   if (referenceSamples > 0)
-    PathTracer(assets, PathTraceSettings{referenceSamples, bounces, threads})
+    PathTracer(assets, loaded.tracing(referenceSamples, threads))
         .render(list, 0, width, height, 1000, reference);
-  PathTracer tracer(assets, PathTraceSettings{samples, bounces, threads});
+  PathTracer tracer(assets, loaded.tracing(samples, threads));
   ds.threads = unsigned(threads);
   Denoiser denoiser(ds);
   std::vector<double> noisyBlock, noisyMae, denoisedBlock, denoisedMae;  // one per seed
@@ -172,3 +173,5 @@ int main(int argc, char** argv) {
   print(what, "time per frame on " + std::to_string(threads) + " threads", milliseconds, "ms");
   return 0;
 }
+
+int main(int argc, char** argv) { return runTool("sdg_denoise_quality", [&] { return runMain(argc, argv); }); }

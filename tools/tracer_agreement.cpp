@@ -14,11 +14,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "assets/asset_resolver.h"
-#include "builtin_behaviors/builtin_behaviors.h"
 #include "render/pathtrace/gpu/gpu_path_tracer.h"
 #include "render/pathtrace/path_tracer.h"
-#include "scene_io/scene_loader.h"
+#include "tool_scene.h"
 
 using namespace sdg;
 
@@ -64,39 +62,33 @@ void row(const std::string& what, const char* unit, double value) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int runMain(int argc, char** argv) {
   if (argc != 6) {
     std::fprintf(stderr, "usage: sdg_tracer_agreement SCENE WIDTH HEIGHT SAMPLES THREADS\n");
     return 2;
   }
   const std::string file = argv[1];
   const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
-  try {
-    Scene scene = loadScene(file, builtinRegistry().catalog());
-    const RenderList list = buildRenderList(scene.stage);
-    const AssetResolver assets = makeSceneResolver(scene.sourceDir, scene.assetRoots, {});
-    PathTraceSettings settings;
-    settings.samples = samples;
-    settings.maxBounces = int(scene.render.getUInt("max_bounces"));
-    settings.threads = std::atoi(argv[5]);
-    PathTracer cpu(assets, settings);
-    GpuPathTracer gpu(assets, settings);
-    PathTracedFrame cpu1, cpu2, gpu1, gpu2;
-    cpu.render(list, 0, width, height, 1, cpu1);
-    cpu.render(list, 0, width, height, 2, cpu2);
-    gpu.render(list, 0, width, height, 1, gpu1);
-    gpu.render(list, 0, width, height, 2, gpu2);
-    const std::string what = "tracer agreement: " + file.substr(file.find_last_of('/') + 1) + " " +
-                             std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(samples) +
-                             " spp, GPU tracer on " + gpu.device();
-    row(what + ", block bias CPU vs GPU (16 x 16 blocks)", "%", 100 * worstBlockBias(gpu1, cpu1));
-    row(what + ", block bias CPU seed 1 vs GPU seed 2 (independent samples)", "%", 100 * worstBlockBias(gpu2, cpu1));
-    row(what + ", block bias CPU seed 1 vs seed 2 (the noise floor)", "%", 100 * worstBlockBias(cpu2, cpu1));
-    row(what + ", per-pixel RMS CPU vs GPU over CPU seed 1 vs 2", "ratio", rms(gpu1, cpu1) / rms(cpu2, cpu1));
-    row(what + ", mean radiance GPU over CPU", "ratio", meanOf(gpu1) / meanOf(cpu1));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "sdg_tracer_agreement: %s\n", e.what());
-    return 1;
-  }
+  const ToolScene loaded = loadToolScene(file);
+  const RenderList& list = loaded.list;
+  const AssetResolver& assets = loaded.assets;
+  const PathTraceSettings settings = loaded.tracing(samples, std::atoi(argv[5]));
+  PathTracer cpu(assets, settings);
+  GpuPathTracer gpu(assets, settings);
+  PathTracedFrame cpu1, cpu2, gpu1, gpu2;
+  cpu.render(list, 0, width, height, 1, cpu1);
+  cpu.render(list, 0, width, height, 2, cpu2);
+  gpu.render(list, 0, width, height, 1, gpu1);
+  gpu.render(list, 0, width, height, 2, gpu2);
+  const std::string what = "tracer agreement: " + file.substr(file.find_last_of('/') + 1) + " " +
+                           std::to_string(width) + "x" + std::to_string(height) + ", " + std::to_string(samples) +
+                           " spp, GPU tracer on " + gpu.device();
+  row(what + ", block bias CPU vs GPU (16 x 16 blocks)", "%", 100 * worstBlockBias(gpu1, cpu1));
+  row(what + ", block bias CPU seed 1 vs GPU seed 2 (independent samples)", "%", 100 * worstBlockBias(gpu2, cpu1));
+  row(what + ", block bias CPU seed 1 vs seed 2 (the noise floor)", "%", 100 * worstBlockBias(cpu2, cpu1));
+  row(what + ", per-pixel RMS CPU vs GPU over CPU seed 1 vs 2", "ratio", rms(gpu1, cpu1) / rms(cpu2, cpu1));
+  row(what + ", mean radiance GPU over CPU", "ratio", meanOf(gpu1) / meanOf(cpu1));
   return 0;
 }
+
+int main(int argc, char** argv) { return runTool("sdg_tracer_agreement", [&] { return runMain(argc, argv); }); }

@@ -236,14 +236,20 @@ namespace {
 // stack (about 6 KB), and Embree's stream code forms its packets within one
 // call.
 constexpr size_t kStreamChunk = 64;
+
+// A stream call's context: Embree forms packets of coherent rays (camera
+// and label rays) and traces the rest one by one.
+void initStreamContext(FilterContext& context, bool coherent, const CutOutTest* cutOuts) {
+  rtcInitIntersectContext(&context.base);
+  context.base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.cutOuts = cutOuts;
+}
 }  // namespace
 
 void EmbreeScene::intersectMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts,
                                 SurfaceHit* hits, uint8_t* found) const {
   FilterContext context;
-  rtcInitIntersectContext(&context.base);
-  context.base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  context.cutOuts = cutOuts;
+  initStreamContext(context, coherent, cutOuts);
   RTCRayHit records[kStreamChunk];
   for (size_t first = 0; first < count; first += kStreamChunk) {
     const size_t n = std::min(kStreamChunk, count - first);
@@ -264,9 +270,7 @@ void EmbreeScene::intersectMany(const PtRay* rays, size_t count, bool coherent, 
 void EmbreeScene::occludedMany(const PtRay* rays, size_t count, bool coherent, const CutOutTest* cutOuts,
                                uint8_t* occluded) const {
   FilterContext context;
-  rtcInitIntersectContext(&context.base);
-  context.base.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  context.cutOuts = cutOuts;
+  initStreamContext(context, coherent, cutOuts);
   RTCRay records[kStreamChunk];
   for (size_t first = 0; first < count; first += kStreamChunk) {
     const size_t n = std::min(kStreamChunk, count - first);

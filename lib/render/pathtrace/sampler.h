@@ -52,6 +52,7 @@
 // so a PixelSampler keeps it from its first sample on; Sobol's second
 // dimension comes from byte tables. All give exactly the numbers of the
 // plain formulas (sobol(), nestedUniformScramble(), permuteQuads()).
+#include <cassert>
 #include <cstdint>
 
 #include "stage/math_types.h"
@@ -225,7 +226,9 @@ class PixelSampler {
   PixelSampler(const SamplerTile& tile, uint32_t x, uint32_t y)
       : tile_(&tile),
         reversedPixel_(sampler_detail::reverseBits(tile.layout().indexBase(x, y))),
-        quadHighBits_(tile.layout().quadHighBits()) {}
+        quadHighBits_(tile.layout().quadHighBits()) {
+    assert(tile.holds(x, y) && "a pixel's keys are its own tile's");
+  }
 
   // Starts sample `index` (below the frame's samples per pixel) of this
   // pixel; the next draw is its first slot.

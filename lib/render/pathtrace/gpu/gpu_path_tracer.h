@@ -73,8 +73,9 @@ class GpuPathTracer {
   // estimate. Close to the CPU Denoiser's output on the same film, not
   // byte-identical.
   void setDenoiser(const std::optional<DenoiseSettings>& settings, bool perPixelVariance = true);
-  // Samples per pixel in one dispatch; 0 (the default): about a million
-  // paths a dispatch. Changes the timing, never the image.
+  // Samples per pixel in one dispatch; 0 (the default): about 4 million
+  // paths a dispatch. On a software device (llvmpipe) fewer, whatever is
+  // asked (gpu_path_tracer.cpp says why). Changes the timing, never the image.
   void setSamplesPerDispatch(int samples);
   // The tracing kernel is compiled for each frame's stage's features
   // (gpu_scene.h's GpuKernelFeature; the first frame with a new set pays
