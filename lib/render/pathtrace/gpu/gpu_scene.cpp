@@ -1,6 +1,7 @@
 #include "render/pathtrace/gpu/gpu_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "assets/image.h"
@@ -27,6 +28,28 @@ void put3(float* out, const Vec3f& v, float w) {
   out[1] = v.y();
   out[2] = v.z();
   out[3] = w;
+}
+
+// A triangle as the affine map that takes it to the unit triangle (Woop,
+// Benthin and Wald 2013's "unit triangle" form): rows u, v and z of the
+// inverse of [p1 - p0, p2 - p0, normal | p0]. The kernel's test is then
+// three dot products a row: z gives the distance, u and v Embree's
+// barycentrics, with no cross product per ray. Worked out in double; a
+// degenerate triangle gets zero rows, which no ray meets (0 / 0 is NaN).
+struct UnitTriangle {
+  float rows[12];
+};
+UnitTriangle unitTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2) {
+  const Vec3d a = p0.cast<double>(), e1 = (p1 - p0).cast<double>(), e2 = (p2 - p0).cast<double>();
+  const Vec3d n = e1.cross(e2);
+  UnitTriangle unit{};
+  Eigen::Matrix3d columns;
+  columns << e1, e2, n;
+  const double det = columns.determinant();
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return unit;
+  const Eigen::Matrix3d inverse = columns.inverse();
+  rows(inverse, -(inverse * a), unit.rows);
+  return unit;
 }
 
 int32_t opacityCode(OpacitySource source) {
@@ -73,7 +96,7 @@ uint32_t GpuSceneData::meshFor(const RenderItem& item) {
 
   GpuMeshRecord record{};
   record.bases[0] = int32_t(meshNodes.size());
-  record.bases[1] = int32_t(triangles.size() / 12);
+  record.bases[1] = int32_t(triangles.size() / 16);
   record.bases[2] = int32_t(indices.size() / 4);
   record.bases[3] = int32_t(vertices.size() / 8);
   const bool hasNormals = d.normals.size() == d.positions.size(), hasUvs = d.uvs.size() == d.positions.size();
@@ -103,12 +126,12 @@ uint32_t GpuSceneData::meshFor(const RenderItem& item) {
   record.flags[2] = bvh.rootLink;
   meshNodes.insert(meshNodes.end(), bvh.nodes.begin(), bvh.nodes.end());
   for (uint32_t t : bvh.order) {
-    const uint32_t* tri = &d.indices[3 * size_t(t)];
-    const Vec3f& p0 = d.positions[tri[0]];
-    const Vec3f e1 = d.positions[tri[1]] - p0, e2 = d.positions[tri[2]] - p0;
-    const float packed[12] = {p0.x(), p0.y(), p0.z(), float(t), e1.x(), e1.y(), e1.z(), 0.0f,
-                              e2.x(), e2.y(), e2.z(), 0.0f};
-    triangles.insert(triangles.end(), packed, packed + 12);
+    const UnitTriangle unit = unitTriangle(d.positions[d.indices[3 * size_t(t)]],
+                                           d.positions[d.indices[3 * size_t(t) + 1]],
+                                           d.positions[d.indices[3 * size_t(t) + 2]]);
+    triangles.insert(triangles.end(), unit.rows, unit.rows + 12);
+    const float id[4] = {float(t), 0.0f, 0.0f, 0.0f};
+    triangles.insert(triangles.end(), id, id + 4);
   }
   mesh->record = uint32_t(meshes.size());
   mesh->empty = triangleCount == 0;

@@ -71,7 +71,7 @@ class GpuSceneData {
 
   // Meshes (append-only).
   std::vector<GpuBvhNode> meshNodes;
-  std::vector<float> triangles;  // 12 per triangle: v0 (w: triangle index), edge 1, edge 2
+  std::vector<float> triangles;  // 16 per triangle: the unit-triangle map's rows u, v, z; the triangle's index
   std::vector<float> vertices;   // 8 per vertex: position, u, normal, v
   std::vector<uint32_t> indices; // 4 per triangle: vertex indices, part
   std::vector<GpuMeshRecord> meshes;

@@ -14,7 +14,8 @@ struct Node {
 const int kEmptyChild = 0x7fffffff;
 layout(std430, binding = 2) readonly buffer Nodes { Node nodes[]; };           // the meshes' levels
 layout(std430, binding = 3) readonly buffer TopNodes { Node topNodes[]; };    // the frame's level over the instances
-// Triangles in leaf order: v0 (w: the mesh's own triangle index, as a float: exact below 2^24), edge 1, edge 2; mesh space.
+// Triangles in leaf order, four rows each: the unit-triangle map's rows u, v and z (gpu_scene.cpp's
+// unitTriangle, mesh space), then the mesh's own triangle index (x, as a float: exact below 2^24).
 layout(std430, binding = 4) readonly buffer Triangles { vec4 triangles[]; };
 // Vertices: position (w: u), normal (w: v).
 layout(std430, binding = 5) readonly buffer Vertices { vec4 vertices[]; };
@@ -221,12 +222,14 @@ struct Hit {
 
 // The entry distance of the ray into the four boxes (kInf where missed).
 // The far distance is pushed out by a few ulps, as robust traversal does,
-// so a box of zero thickness (a plane) is still entered. (Not the slabs as
-// lo * inv - o * inv: with a zero direction component that is inf - inf.)
+// so a box of zero thickness (a plane) is still entered. Each slab is one
+// fused multiply-add, lo * inv + (-o * inv): `inv` comes from safeInverse,
+// so a zero direction component never makes that inf - inf.
 vec4 boxEntry(Node n, vec3 o, vec3 inv, float tMin, float tMax) {
-  vec4 tx0 = (n.loX - o.x) * inv.x, tx1 = (n.hiX - o.x) * inv.x;
-  vec4 ty0 = (n.loY - o.y) * inv.y, ty1 = (n.hiY - o.y) * inv.y;
-  vec4 tz0 = (n.loZ - o.z) * inv.z, tz1 = (n.hiZ - o.z) * inv.z;
+  vec3 oi = -o * inv;
+  vec4 tx0 = fma(n.loX, vec4(inv.x), vec4(oi.x)), tx1 = fma(n.hiX, vec4(inv.x), vec4(oi.x));
+  vec4 ty0 = fma(n.loY, vec4(inv.y), vec4(oi.y)), ty1 = fma(n.hiY, vec4(inv.y), vec4(oi.y));
+  vec4 tz0 = fma(n.loZ, vec4(inv.z), vec4(oi.z)), tz1 = fma(n.hiZ, vec4(inv.z), vec4(oi.z));
   vec4 tNear = max(max(min(tx0, tx1), min(ty0, ty1)), max(min(tz0, tz1), vec4(tMin)));
   vec4 tFar = min(min(max(tx0, tx1), max(ty0, ty1)), min(max(tz0, tz1), vec4(tMax))) * 1.0000004;
   bvec4 entered = bvec4(tNear.x <= tFar.x, tNear.y <= tFar.y, tNear.z <= tFar.z, tNear.w <= tFar.w);
@@ -234,6 +237,9 @@ vec4 boxEntry(Node n, vec3 o, vec3 inv, float tMin, float tMax) {
   return mix(vec4(kInf), tNear, bvec4(entered.x && present.x, entered.y && present.y, entered.z && present.z,
                                       entered.w && present.w));
 }
+// 1 / d with no infinity: a zero component becomes 1e-20 first (as Embree's
+// safe reciprocal does), so the fused slabs above never meet inf - inf.
+vec3 safeInverse(vec3 d) { return 1.0 / mix(d, vec3(1e-20), lessThan(abs(d), vec3(1e-20))); }
 
 // Orders two (entry, child) pairs nearest first: a step of the sorting network below.
 #define SDG_ORDER(ta, ca, tb, cb) \
@@ -246,21 +252,17 @@ vec4 boxEntry(Node n, vec3 o, vec3 inv, float tMin, float tMax) {
     cb = c_;                      \
   }
 
-// Möller-Trumbore with Embree's barycentrics (p = (1-u-v) p0 + u p1 + v p2).
-bool hitTriangle(vec3 o, vec3 d, vec4 v0, vec4 e1, vec4 e2, float tMin, float tMax, out float t, out float u, out float v) {
-  vec3 p = cross(d, e2.xyz);
-  float det = dot(e1.xyz, p);
-  t = u = v = 0.0;
-  if (det == 0.0) return false;
-  float invDet = 1.0 / det;
-  vec3 s = o - v0.xyz;
-  u = dot(s, p) * invDet;
+// The unit-triangle test (gpu_scene.cpp's unitTriangle): the ray taken
+// into the triangle's own space, where it lies at z = 0 and spans u, v >= 0,
+// u + v <= 1; u and v are Embree's barycentrics (p = (1-u-v) p0 + u p1 + v p2).
+bool hitTriangle(vec3 o, vec3 d, vec4 rowU, vec4 rowV, vec4 rowZ, float tMin, float tMax, out float t, out float u, out float v) {
+  t = -(dot(rowZ.xyz, o) + rowZ.w) / dot(rowZ.xyz, d);
+  u = v = 0.0;
+  if (!(t > tMin && t < tMax)) return false;
+  u = dot(rowU.xyz, o) + rowU.w + t * dot(rowU.xyz, d);
   if (u < 0.0 || u > 1.0) return false;
-  vec3 q = cross(s, e1.xyz);
-  v = dot(d, q) * invDet;
-  if (v < 0.0 || u + v > 1.0) return false;
-  t = dot(e2.xyz, q) * invDet;
-  return t > tMin && t < tMax;
+  v = dot(rowV.xyz, o) + rowV.w + t * dot(rowV.xyz, d);
+  return v >= 0.0 && u + v <= 1.0;
 }
 
 bool opaqueAt(uint instance, uint triangle, float u, float v) {
@@ -274,67 +276,42 @@ const int kStackSize = 64;
 // stay below it.
 const int kEnterInstance = 0x40000000;
 
-// The closest hit (or, with anyHit, any hit) of the two-level BVH, in one
-// loop over one stack: the top level's entries, then, above the stack
-// height where an instance was entered, that instance's mesh's, with the
-// ray taken into the mesh's space unnormalised (so t is the same in both).
-// One stack and one loop, not a loop per level: half the local memory, and
-// the warp's invocations stay in the same loop whatever level each is in.
-// Counted in the pixel's ray counter by the callers.
+// The closest hit (or, with anyHit, any hit) of the two-level BVH over one
+// stack: the top level's entries, then, above the stack height where an
+// instance was entered, that instance's mesh's, with the ray taken into the
+// mesh's space unnormalised (so t is the same in both). One stack and one
+// node loop for both levels, not loops per level: half the local memory,
+// and the warp's invocations stay in the same loop whatever level each is
+// in. Counted in the pixel's ray counter by the callers.
 bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit) {
   hit.instance = hit.triangle = 0u;
   hit.u = hit.v = hit.t = 0.0;
   if (params.counts.z == 0) return false;
-  vec3 ro = o, rd = d, inv = 1.0 / d;
+  vec3 ro = o, rd = d, inv = safeInverse(d);
   int stack[kStackSize];
   int top = 0;
   // The item visited next, kept out of the stack (the nearest child, a
   // mesh's root): a store and a load of local memory less per node.
-  int next = int(params.seed.z);
+  int item = int(params.seed.z);
   int instance = -1, instanceBase = 0, nodeBase = 0, triBase = 0;
   bool cutOut = false, found = false;
   for (;;) {
-    int item = next;
-    next = kEmptyChild;
-    if (item == kEmptyChild) {
-      if (instance >= 0 && top == instanceBase) {  // the mesh is done: back to the top level
-        instance = -1;
-        ro = o;
-        rd = d;
-        inv = 1.0 / d;
+    // Inner nodes of either level, until the item is a leaf or an instance
+    // to enter: a warp's invocations walk nodes together, then test
+    // triangles together (Aila and Laine's "while-while"), instead of each
+    // iteration running the node and the leaf code for a mixed warp.
+    for (;;) {
+      if (item == kEmptyChild) {
+        if (instance >= 0 && top == instanceBase) {  // the mesh is done: back to the top level
+          instance = -1;
+          ro = o;
+          rd = d;
+          inv = safeInverse(d);
+        }
+        if (top == 0) break;
+        item = stack[--top];
       }
-      if (top == 0) break;
-      item = stack[--top];
-    }
-    int enter = -1;
-    if (instance < 0 && item >= kEnterInstance) {
-      enter = item - kEnterInstance;
-    } else if (instance < 0 && item < 0) {  // a top-level leaf: its instances (stored in leaf order)
-      int code = ~item;
-      int first = code >> 4, count = (code & 15) + 1;
-      for (int k = count - 1; k >= 1; --k)
-        if (top < kStackSize) stack[top++] = kEnterInstance + first + k;
-      enter = first;
-    } else if (item < 0) {  // a mesh's leaf
-      int code = ~item;
-      int first = code >> 4, count = (code & 15) + 1;
-      for (int k = 0; k < count; ++k) {
-        int at = 3 * (triBase + first + k);
-        float t, u, v;
-        if (!hitTriangle(ro, rd, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
-        uint triangle = uint(triangles[at].w);
-        if (cutOut && !opaqueAt(uint(instance), triangle, u, v)) continue;
-        tMax = t;
-        hit.instance = uint(instance);
-        hit.triangle = triangle;
-        hit.u = u;
-        hit.v = v;
-        hit.t = t;
-        found = true;
-        if (anyHit) return true;
-      }
-      continue;
-    } else {  // an inner node of either level
+      if (item < 0 || (instance < 0 && item >= kEnterInstance)) break;  // a leaf or an instance to enter
       Node n = instance < 0 ? topNodes[item] : nodes[nodeBase + item];
       vec4 entry = boxEntry(n, ro, inv, tMin, tMax);
       // The children sorted by entry distance (a five-step network, no
@@ -350,8 +327,39 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
       if (t3 < kInf && top < kStackSize) stack[top++] = c3;
       if (t2 < kInf && top < kStackSize) stack[top++] = c2;
       if (t1 < kInf && top < kStackSize) stack[top++] = c1;
-      if (t0 < kInf) next = c0;
+      item = t0 < kInf ? c0 : kEmptyChild;
+    }
+    if (item == kEmptyChild) break;  // the stack is empty: done
+    if (instance >= 0) {  // a mesh's leaf
+      int code = ~item;
+      int first = code >> 4, count = (code & 15) + 1;
+      for (int k = 0; k < count; ++k) {
+        int at = 4 * (triBase + first + k);
+        float t, u, v;
+        if (!hitTriangle(ro, rd, triangles[at], triangles[at + 1], triangles[at + 2], tMin, tMax, t, u, v)) continue;
+        uint triangle = uint(triangles[at + 3].x);
+        if (cutOut && !opaqueAt(uint(instance), triangle, u, v)) continue;
+        tMax = t;
+        hit.instance = uint(instance);
+        hit.triangle = triangle;
+        hit.u = u;
+        hit.v = v;
+        hit.t = t;
+        found = true;
+        if (anyHit) return true;
+      }
+      item = kEmptyChild;
       continue;
+    }
+    int enter;
+    if (item >= kEnterInstance) {
+      enter = item - kEnterInstance;
+    } else {  // a top-level leaf: its instances (stored in leaf order)
+      int code = ~item;
+      int first = code >> 4, count = (code & 15) + 1;
+      for (int k = count - 1; k >= 1; --k)
+        if (top < kStackSize) stack[top++] = kEnterInstance + first + k;
+      enter = first;
     }
     // Enter instance `enter`: its mesh's root above the current stack.
     Instance inst = instances[enter];
@@ -360,11 +368,11 @@ bool traceScene(vec3 o, vec3 d, float tMin, float tMax, bool anyHit, out Hit hit
     cutOut = kOpacity && inst.flags.x != 0;
     ro = rowsTimes(inst.local, o, 1.0);
     rd = rowsTimes(inst.local, d, 0.0);
-    inv = 1.0 / rd;
+    inv = safeInverse(rd);
     nodeBase = mesh.bases.x;
     triBase = mesh.bases.y;
     instanceBase = top;
-    next = mesh.flags.z;
+    item = mesh.flags.z;
   }
   return found;
 }
