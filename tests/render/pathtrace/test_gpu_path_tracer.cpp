@@ -6,6 +6,7 @@
 #include "pt_test_scenes.h"
 
 #include <cstring>
+#include <fstream>
 #include <memory>
 
 #include "render/pathtrace/gpu/gl_compute.h"
@@ -166,6 +167,39 @@ TEST_CASE("gpu path tracer: agrees with the CPU tracer on specular_level, treatA
   yaml += "  /Bulb: {type: SphereLight, inputs:radius: 0.05, inputs:intensity: 200, treatAsPoint: true, "
           "translate: [0.5, -0.5, 1.5]}\n";
   checkAgreement(renderListOf(yaml), 32, 32, 16);
+}
+
+// A mesh whose triangles include degenerate ones across the view: three
+// points on a line, a repeated vertex, a point triangle. The GPU tests each
+// triangle in its own unit-triangle space (gpu_scene.cpp's unitTriangle),
+// which a degenerate triangle does not have: it must be met by no ray, and
+// leave no sample NaN, as in Embree.
+TEST_CASE("gpu path tracer: degenerate triangles are met by no ray, as on the CPU", "[pathtrace][gpu]") {
+  const fs::path file = scratchFolder("gpu_degenerate") / "card.obj";
+  {
+    std::ofstream out(file);
+    out << "v -1 0 0\nv 1 0 0\nv 1 0 2\nv -1 0 2\n"          // the card, 1..4
+        << "v -1.5 -1 1\nv 0 -1 1\nv 1.5 -1 1\n"               // a line in front of it, 5..7
+        << "v 0.2 -1 0.4\nv 0.7 -1 1.6\n"                      // a segment, 8..9
+        << "f 1 2 3\nf 1 3 4\nf 5 6 7\nf 8 9 8\nf 6 6 6\n";
+  }
+  const std::string yaml = "version: 1\nprims:\n"
+                           "  /Card: {type: Mesh, asset: " + file.string() + "}\n"
+                           "  /Floor: {type: Plane, width: 8, length: 8}\n"
+                           "  /Sky: {type: DomeLight, inputs:intensity: 1}\n"
+                           "  /Camera: {type: Camera, focalLength: 18, clippingRange: [0.1, 100], "
+                           "translate: [0, -4, 1], rotateX: 90}\n";
+  checkAgreement(renderListOf(yaml), 32, 32, 16);
+  PathTraceSettings settings;
+  settings.samples = 4;
+  auto gpu = gpuTracer(settings);
+  if (!gpu) return;
+  const PathTracedFrame frame = gpuTrace(*gpu, renderListOf(yaml), 32, 32, 3);
+  CHECK(gpu->stats().droppedSamples == 0);
+  // The degenerate triangles cross the middle row in front of the card: the
+  // label rays there meet the card (or the floor below it), as on the CPU.
+  const PathTracedFrame cpu = trace(renderListOf(yaml), 32, 32, settings, 3);
+  CHECK(sameInstanceShare(frame, cpu) == 1.0);
 }
 
 TEST_CASE("gpu path tracer: byte-identical reruns, whatever the samples per dispatch", "[pathtrace][gpu]") {
