@@ -70,7 +70,7 @@ bool takePixel(inout uint taken, out uvec2 pixel) {
 // and a path ray in alternate iterations, invocations out of step shaded in
 // every other iteration: on an H100 this form is 7-10 % faster). A path
 // that ends starts the pixel's next sample in the same iteration. Both rays
-// go through one traceScene call in a two-pass loop, so the traversal is
+// go through one traceWithLights call in a two-pass loop, so the traversal is
 // compiled once. Sample -1 is the label ray: it stops at its first surface
 // and writes the pixel's label planes.
 void main() {
@@ -112,6 +112,7 @@ void main() {
   for (;;) {
     Hit hit;
     bool found = false;
+    int hitLight = -1;
     for (int pass = shadow ? 0 : 1; pass < 2; ++pass) {
       if (pass == 1 && !pathLive) {
         // The path is done (its last shadow ray traced): its sample joins the pixel's sum, in sample order.
@@ -164,15 +165,17 @@ void main() {
       }
       bool isShadow = pass == 0;
       Hit traced;
-      bool met = traceScene(origin, isShadow ? shadowDirection : direction,
-                            0.0, isShadow ? shadowMax : tMax, isShadow, traced);
+      int metLight;
+      bool met = traceWithLights(origin, isShadow ? shadowDirection : direction, isShadow ? shadowMax : tMax, isShadow,
+                                 isShadow ? shadowLight : (depth > 0 ? kEveryLight : kNoLights), traced, metLight);
       rays++;
       if (isShadow) {
-        if (!met && !lightsBlock(origin, shadowDirection, 0.0, shadowMax, shadowLight)) radiance += shadowRadiance;
+        if (!met) radiance += shadowRadiance;
         shadow = false;
       } else {
         hit = traced;
-        found = met;
+        found = met && metLight < 0;
+        hitLight = metLight;
       }
     }
     if (!pathLive) break;  // every sample done
@@ -180,9 +183,9 @@ void main() {
     // What the path's ray met.
     bool continues = false;
     vec3 next = vec3(0.0), wi = vec3(0.0);
-    int light;
-    vec3 lightRadiance;
-    if (depth > 0 && intersectLights(origin, direction, 0.0, found ? hit.t : tMax, light, lightRadiance)) {
+    if (hitLight >= 0) {
+      int light = hitLight;
+      vec3 lightRadiance = lights[light].radiancePick.xyz;
       float weight = powerHeuristic(pdfBsdf, lightPdf(light, previousPoint, previousNormal, direction));
       if (lobeMultipliers) lightRadiance *= responseScale(light, previousDiffuse, previousSpecular);
       radiance += beta * lightRadiance * weight;
