@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -133,10 +132,8 @@ struct ParamsHeader {
   int32_t dome[4];
   int32_t domeTables[4];
   uint32_t sampling[4];
-  uint32_t work[4];  // the kernel's pixel counter (0 at each dispatch), the most pixels an invocation takes
 };
-static_assert(sizeof(ParamsHeader) == 224, "the kernel's Params header is 224 bytes");
-static_assert(offsetof(ParamsHeader, work) == 208, "pt_common.glsl's pixel counter is at byte 208");
+static_assert(sizeof(ParamsHeader) == 208, "the kernel's Params header is 208 bytes");
 
 struct FilmPixel {  // pt_common.glsl's FilmPixel
   float sum[4], albedo[4], normalDepth[4];
@@ -479,10 +476,6 @@ struct GpuPathTracer::Impl {
                                             : int(std::clamp<int64_t>(kPathsPerDispatch / int64_t(pixels), 1, samples));
     if (!context->onGpu())
       perDispatch = std::min(perDispatch, std::max(1, kSoftwareVerticesPerDispatch / (settings.maxBounces + 1)));
-    // On a GPU an invocation takes pixels until none is left; a software
-    // device's invocations take two at most (its loop limit above), so the
-    // tests there still take a second pixel.
-    header.work[1] = context->onGpu() ? std::numeric_limits<uint32_t>::max() : 2u;
     const GLuint groupsX = GLuint((width + program.group[0] - 1) / program.group[0]),
                  groupsY = GLuint((height + program.group[1] - 1) / program.group[1]);
     for (int first = 0; first < samples; first += perDispatch) {

@@ -41,12 +41,8 @@ layout(std430, binding = 0) readonly buffer Params {
   ivec4 dome;        // width, height (0: no map), first texel (uint words in `texels`), pick cdf offset
   ivec4 domeTables;  // offsets: row cdf, column cdfs, row cosines, texel solid angles
   uvec4 sampling;    // the frame's samples per pixel, its SampleLayout (sampler.h: sample bits, tile bits), 0
-  uvec4 work;        // the pixel counter (0 at each dispatch), the most pixels an invocation takes, 0, 0
   float tables[];
 } params;
-// The dispatch's pixel counter (params.work.x), which pt_trace.glsl's
-// invocations take pixels from: the one word of Params a kernel writes.
-layout(std430, binding = 0) buffer PixelCounter { layout(offset = 208) uint nextPixel; } pixelCounter;
 
 // The film, per pixel: the running sum (rgb; w: samples dropped), the
 // label planes, the rays traced. Each pixel is written by its own

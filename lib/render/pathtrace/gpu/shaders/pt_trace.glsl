@@ -1,5 +1,5 @@
-// Part 5: the invocations take pixels one after another, a port of
-// path_tracer.cpp's tracePath, traceLabels and the per-pixel sample loop. Each dispatch adds
+// Part 5: one invocation per pixel, a port of path_tracer.cpp's
+// tracePath, traceLabels and the per-pixel sample loop. Each dispatch adds
 // samples [first, first + count) of every pixel to its running sum, in
 // sample order, so the sum is the same whatever the dispatches' split.
 const int kRouletteDepth = 3;
@@ -18,76 +18,43 @@ void cameraRay(vec2 pixel, out vec3 origin, out vec3 direction, out float tMax) 
   direction = along / tMax;
 }
 
-// Writes the pixel's sums and ray counts to the film once its samples of
-// this dispatch are done.
-void finishPixel(uint index, vec4 sum, float luminanceSquares, uint rays, bool labels) {
-  film[index].sum = sum;
-  film[index].albedo.w = luminanceSquares;
-  uvec3 counts = film[index].rays.xyz;
-  counts.z += uint(params.size.w) + (labels ? 1u : 0u);
-  uint low = counts.x + rays;
-  counts.y += low < rays ? 1u : 0u;
-  counts.x = low;
-  film[index].rays.xyz = counts;
-}
-
-// The invocation's next pixel, from the dispatch's counter: pixels are
-// handed out tile by tile (8 x 4, tiles row by row), so a warp's
-// invocations start on neighbouring pixels. False once none is left or the
-// invocation has taken its share (params.work.y).
-bool takePixel(inout uint taken, out uvec2 pixel) {
-  pixel = uvec2(0u);
-  uint width = uint(params.size.x), height = uint(params.size.y);
-  uint tilesX = (width + 7u) / 8u, slots = tilesX * ((height + 3u) / 4u) * 32u;
-  while (taken < params.work.y) {
-    uint slot = atomicAdd(pixelCounter.nextPixel, 1u);
-    if (slot >= slots) return false;
-    uint tile = slot >> 5u, within = slot & 31u;
-    pixel = uvec2((tile % tilesX) * 8u + (within & 7u), (tile / tilesX) * 4u + (within >> 3u));
-    if (pixel.x < width && pixel.y < height) {
-      taken++;
-      return true;
-    }
-  }
-  return false;
-}
-
-// Each invocation takes a pixel from the counter and traces its samples of
-// the dispatch, path_tracer.cpp's tracePath for each, the vertices and
-// their shadow rays in the same order; then it takes the next pixel. So an
-// invocation whose pixel is cheap (the sky) goes on with another instead of
-// idling until its warp's dearest pixel is done, and the warps that start
-// first do most of the work (on an H100 the done-when run is 4.8 % faster
-// than with one pixel an invocation). A pixel's sums depend on that pixel
-// alone, never on which invocation traced it or when, so the film is the
-// same whatever the order. A software device caps the pixels an invocation
-// takes (params.work.y): its loops end after 65,535 iterations.
-//
-// One loop whose every iteration is the same three steps for every
-// invocation: trace the shadow ray the previous vertex left (if any), trace
-// the path's ray, shade what it met. So a warp's invocations stay in step,
-// shading together, whatever sample or bounce each is at (with a shadow ray
-// and a path ray in alternate iterations, invocations out of step shaded in
-// every other iteration: on an H100 this form is 7-10 % faster). A path
-// that ends starts the pixel's next sample in the same iteration. Both rays
-// go through one traceWithLights call in a two-pass loop, so the traversal is
+// The pixel's samples: path_tracer.cpp's tracePath for each, its vertices
+// and their shadow rays taken in the same order. One loop whose every
+// iteration is the same three steps for every invocation: trace the shadow
+// ray the previous vertex left (if any), trace the path's ray, shade what
+// it met. So a warp's invocations stay in step, shading together, whatever
+// sample or bounce each is at (with a shadow ray and a path ray in
+// alternate iterations, invocations out of step shaded in every other
+// iteration: on an H100 this form is 7-10 % faster). A path that ends
+// starts the pixel's next sample in the same iteration. Both rays go
+// through one traceWithLights call in a two-pass loop, so the traversal is
 // compiled once. Sample -1 is the label ray: it stops at its first surface
 // and writes the pixel's label planes.
 void main() {
-  uvec2 pixel = uvec2(0u);
-  uint index = 0u, taken = 0u;
-  bool havePixel = false;
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  int width = params.size.x, height = params.size.y;
+  if (pixel.x >= uint(width) || pixel.y >= uint(height)) return;
+  uint index = pixel.y * uint(width) + pixel.x;
   uint rays = 0u;
   bool labels = params.seed.w != 0u;
   // Only the running sums live in registers through the loop; the label
   // planes go to the film when the label ray meets its surface.
   vec4 sum = vec4(0.0);
   float luminanceSquares = 0.0;
-  Sampler sampler;
+  if (labels) {
+    // Cleared here, then written by the label ray (the ray through the pixel's centre) if it meets a surface.
+    film[index].albedo = vec4(0.0);
+    film[index].normalDepth = vec4(0.0, 0.0, 0.0, kInf);
+    film[index].rays = uvec4(0u);
+  } else {
+    sum = film[index].sum;
+    luminanceSquares = film[index].albedo.w;
+  }
+  Sampler sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y, params.sampling.yz);
   int maxBounces = params.counts.x;
   bool lobeMultipliers = kLobeMultipliers && params.counts.w != 0;
   int sampleEnd = params.size.z + params.size.w;
-  int s = sampleEnd;  // no pixel yet: the first iteration takes one
+  int s = params.size.z - (labels ? 1 : 0);
 
   // The path's state. pathLive: origin and direction hold the path's next ray.
   bool pathLive = false, label = false;
@@ -127,26 +94,7 @@ void main() {
         }
         if (unfinished) s++;
         unfinished = false;
-        if (s >= sampleEnd) {  // the pixel's samples are done: the next pixel
-          if (havePixel) finishPixel(index, sum, luminanceSquares, rays, labels);
-          havePixel = takePixel(taken, pixel);
-          if (!havePixel) break;
-          index = pixel.y * uint(params.size.x) + pixel.x;
-          rays = 0u;
-          sum = vec4(0.0);
-          luminanceSquares = 0.0;
-          if (labels) {
-            // Cleared here, then written by the label ray (the ray through the pixel's centre) if it meets a surface.
-            film[index].albedo = vec4(0.0);
-            film[index].normalDepth = vec4(0.0, 0.0, 0.0, kInf);
-            film[index].rays = uvec4(0u);
-          } else {
-            sum = film[index].sum;
-            luminanceSquares = film[index].albedo.w;
-          }
-          sampler = pixelSampler(params.seed.xy, pixel.x, pixel.y, params.sampling.yz);
-          s = params.size.z - (labels ? 1 : 0);
-        }
+        if (s >= sampleEnd) break;
         // The next sample's camera ray, traced in this pass.
         label = s < 0;
         vec2 jitter = vec2(0.5);
@@ -215,7 +163,8 @@ void main() {
         // The vertex's draws in the CPU tracer's order (pick, light, lobe,
         // BSDF, roulette), each made where it is used rather than all up
         // front, so fewer values are live through the light and BSDF code
-        // (on an H100 the done-when run 2.2 % faster, the same numbers).
+        // (on an H100, with traceWithLights, the done-when run 3.4 % and the
+        // demo's stage 3 % faster; the same numbers).
         float uPick = next1D(sampler);
         vec2 uLight = next2D(sampler);
         if (sampleLight(g.position, surface.normal, uPick, uLight, ls) && dot(ls.direction, side) > 0.0) {
@@ -268,4 +217,12 @@ void main() {
       pathLive = false;  // finished once its shadow ray, if any, is traced
     }
   }
+  film[index].sum = sum;
+  film[index].albedo.w = luminanceSquares;
+  uvec3 counts = film[index].rays.xyz;
+  counts.z += uint(params.size.w) + (labels ? 1u : 0u);
+  uint low = counts.x + rays;
+  counts.y += low < rays ? 1u : 0u;
+  counts.x = low;
+  film[index].rays.xyz = counts;
 }
