@@ -64,8 +64,8 @@ int runMain(int argc, char** argv) {
     return 2;
   }
   const std::string file = argv[1];
-  const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
-  const int threads = std::atoi(argv[5]);
+  const int width = toolInt("WIDTH", argv[2], 1), height = toolInt("HEIGHT", argv[3], 1);
+  const int samples = toolInt("SAMPLES", argv[4], 1), threads = toolInt("THREADS", argv[5], 1);
   bool denoise = false, gpu = false, replay = false;
   for (int a = 6; a < argc; ++a) {
     const std::string flag = argv[a];

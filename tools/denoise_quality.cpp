@@ -83,36 +83,28 @@ int runMain(int argc, char** argv) {
     return 2;
   }
   const std::string file = argv[1];
-  const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
-  const int referenceSamples = std::atoi(argv[5]), threads = std::atoi(argv[6]);
-  const int seeds = argc > 7 ? std::max(1, std::atoi(argv[7])) : 3;
+  const int width = toolInt("WIDTH", argv[2], kBlock), height = toolInt("HEIGHT", argv[3], kBlock);
+  const int samples = toolInt("SAMPLES", argv[4], 1), referenceSamples = toolInt("REFERENCE", argv[5], 0);
+  const int threads = toolInt("THREADS", argv[6], 1);
+  const int seeds = argc > 7 ? toolInt("SEEDS", argv[7], 1) : 3;
   bool spatial = false;
   DenoiseSettings ds;
   for (int a = 8; a < argc; ++a) {
     const std::string arg = argv[a];
     const size_t eq = arg.find('=');
     const std::string key = arg.substr(0, eq);
-    const double value = eq == std::string::npos ? 0.0 : std::atof(arg.c_str() + eq + 1);
+    const char* value = eq == std::string::npos ? nullptr : argv[a] + eq + 1;
     if (arg == "spatial") spatial = true;
-    else if (key == "iterations" && eq != std::string::npos) ds.iterations = int(value);
-    else if (key == "sigmaColor" && eq != std::string::npos) ds.sigmaColor = float(value);
-    else if (key == "sigmaNormal" && eq != std::string::npos) ds.sigmaNormal = float(value);
-    else if (key == "sigmaDepth" && eq != std::string::npos) ds.sigmaDepth = float(value);
-    else if (key == "sigmaColorDecay" && eq != std::string::npos) ds.sigmaColorDecay = float(value);
-    else {
-      std::fprintf(stderr, "sdg_denoise_quality: unknown argument '%s' (expected spatial or iterations=, sigmaColor=, "
-                           "sigmaColorDecay=, sigmaNormal=, sigmaDepth=)\n", arg.c_str());
-      return 2;
-    }
+    else if (value && key == "iterations") ds.iterations = toolInt("iterations", value, 0);
+    else if (value && key == "sigmaColor") ds.sigmaColor = toolFloat("sigmaColor", value);
+    else if (value && key == "sigmaNormal") ds.sigmaNormal = toolFloat("sigmaNormal", value);
+    else if (value && key == "sigmaDepth") ds.sigmaDepth = toolFloat("sigmaDepth", value);
+    else if (value && key == "sigmaColorDecay") ds.sigmaColorDecay = toolFloat("sigmaColorDecay", value);
+    else
+      throw ToolUsageError("unknown argument '" + arg + "' (expected spatial or iterations=, sigmaColor=, "
+                           "sigmaColorDecay=, sigmaNormal=, sigmaDepth=)");
   }
-  if (width < kBlock || height < kBlock || samples < 1 || referenceSamples < 0 || threads < 1) {
-    std::fprintf(stderr, "sdg_denoise_quality: WIDTH and HEIGHT at least %d, SAMPLES and THREADS at least 1\n", kBlock);
-    return 2;
-  }
-  if (ds.iterations < 0 || ds.iterations > 16) {
-    std::fprintf(stderr, "sdg_denoise_quality: iterations must be 0 to 16, got %d\n", ds.iterations);
-    return 2;
-  }
+  if (ds.iterations > 16) throw ToolUsageError("iterations must be 0 to 16, got " + std::to_string(ds.iterations));
   const ToolScene loaded = loadToolScene(file);
   const RenderList& list = loaded.list;
   const AssetResolver& assets = loaded.assets;

@@ -68,11 +68,12 @@ int runMain(int argc, char** argv) {
     return 2;
   }
   const std::string file = argv[1];
-  const int width = std::atoi(argv[2]), height = std::atoi(argv[3]), samples = std::atoi(argv[4]);
+  const int width = toolInt("WIDTH", argv[2], 1), height = toolInt("HEIGHT", argv[3], 1);
+  const int samples = toolInt("SAMPLES", argv[4], 1), threads = toolInt("THREADS", argv[5], 1);
   const ToolScene loaded = loadToolScene(file);
   const RenderList& list = loaded.list;
   const AssetResolver& assets = loaded.assets;
-  const PathTraceSettings settings = loaded.tracing(samples, std::atoi(argv[5]));
+  const PathTraceSettings settings = loaded.tracing(samples, threads);
   PathTracer cpu(assets, settings);
   GpuPathTracer gpu(assets, settings);
   PathTracedFrame cpu1, cpu2, gpu1, gpu2;
