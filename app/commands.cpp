@@ -121,7 +121,9 @@ RenderOverrides renderOverrides(const ImageArgs& args) {
 namespace {
 
 LoadedScene load(const SceneArgs& args) {
-  return loadSceneForRun(sceneRequest(args));
+  LoadedScene loaded = loadSceneForRun(sceneRequest(args));
+  printDropped(loaded);
+  return loaded;
 }
 
 size_t behaviorCount(const Scene& scene) {
@@ -132,15 +134,30 @@ size_t behaviorCount(const Scene& scene) {
 
 }  // namespace
 
+void printDropped(const LoadedScene& loaded) {
+  for (const DroppedWarning& d : loaded.dropped) log::dropped(d);
+}
+
 void addValidate(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<SceneArgs>();
+  auto strict = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("validate", "Check a scene and report every problem with its file:line:column");
-  cmd->footer("Exit status: 0 when the scene is valid, 2 when it is not.");
+  cmd->footer("Exit status: 0 when the scene is valid, 2 when it is not (with --strict, also when a USD file has\n"
+              "something the stage would drop: an unread prim type, schema, material network...).");
   addSceneArgs(*cmd, *args);
-  cmd->callback([args, &exitCode] {
-    const Scene& scene = load(*args).scene;
-    std::printf("%s: valid (%zu prims, %zu behaviors, %zu writers)\n", args->scene.c_str(), scene.stage.primCount(),
-                behaviorCount(scene), scene.writers.size());
+  cmd->add_flag("--strict", *strict, "Fail (exit 2) when anything in the scene's USD files would be dropped");
+  cmd->callback([args, strict, &exitCode] {
+    const LoadedScene loaded = load(*args);
+    const Scene& scene = loaded.scene;
+    if (*strict && !loaded.dropped.empty()) {
+      std::printf("%s: invalid under --strict: %zu kinds of content would be dropped (listed above)\n",
+                  args->scene.c_str(), loaded.dropped.size());
+      exitCode = kExitInvalid;
+      return;
+    }
+    std::printf("%s: valid (%zu prims, %zu behaviors, %zu writers)%s\n", args->scene.c_str(), scene.stage.primCount(),
+                behaviorCount(scene), scene.writers.size(),
+                loaded.dropped.empty() ? "" : (", " + std::to_string(loaded.dropped.size()) + " kinds of content dropped").c_str());
     exitCode = kExitOk;
   });
 }

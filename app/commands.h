@@ -55,6 +55,10 @@ void addImageArgs(CLI::App& cmd, ImageArgs& args);
 // The overrides they give (a bad --resolution is a usage error, exit 2).
 RenderOverrides renderOverrides(const ImageArgs& args);
 
+// Prints what the scene's USD files have that the stage does not carry
+// over (one warning per kind of loss; docs/usd.md "What is dropped").
+void printDropped(const LoadedScene& loaded);
+
 void addValidate(CLI::App& app, int& exitCode);
 void addInspect(CLI::App& app, int& exitCode);
 void addSchema(CLI::App& app, int& exitCode);

@@ -31,6 +31,7 @@ void addExportUsd(CLI::App& app, int& exitCode) {
     if (!out->ends_with(".usda"))
       throw SceneError(SourceLoc{"--out", 0, 0}, "expected a file name ending in .usda, found '" + *out + "'");
     LoadedScene loaded = loadSceneForRun(sceneRequest(*args));
+    printDropped(loaded);
     UsdExportOptions options;
     options.isaacScriptsRoot = *scriptsRoot;
     while (options.isaacScriptsRoot.size() > 1 && options.isaacScriptsRoot.ends_with('/'))

@@ -33,6 +33,7 @@ void addRender(CLI::App& app, int& exitCode) {
     options.outputPath = args->out;
     options.render = renderOverrides(args->image);
     LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
+    printDropped(loaded);
     QuickRenderResult result = renderOnePicture(loaded, options);
     log::info("wrote " + args->out + " (" + std::to_string(result.width) + " x " + std::to_string(result.height) +
               ", camera " + result.camera + ", " + result.renderer + ")");

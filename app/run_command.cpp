@@ -109,6 +109,7 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->callback([args, &exitCode] {
     const auto loadStart = std::chrono::steady_clock::now();
     LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
+    printDropped(loaded);
     selectCameras(loaded, args->cameras);
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
@@ -125,7 +126,8 @@ void addRun(CLI::App& app, int& exitCode) {
       options.progress = Progress::stderrIsTerminal() && log::enabled(log::Level::Info);
       DatasetRunResult result = runDataset(loaded, options);
       std::string summary =
-          makeRunSummary(RunSummaryInputs{versionText(), args->scene.scene, &loaded.scene, &options, &result, loadSeconds})
+          makeRunSummary(RunSummaryInputs{versionText(), args->scene.scene, &loaded.scene, &options, &result, loadSeconds,
+                                           &loaded.dropped})
               .dump(2) + "\n";
       // A shard's summary waits beside the others for `sdgbehave merge`.
       const std::filesystem::path summaryPath =

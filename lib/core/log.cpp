@@ -49,7 +49,10 @@ void write(Level level, std::string_view message) {
   std::fwrite(line.data(), 1, line.size(), stderr);
 }
 
-void diagnostic(const Diagnostic& d) {
+namespace {
+
+// A located problem, with a loss's count in the JSON form when `dropped` is set.
+void writeDiagnostic(const Diagnostic& d, const DroppedInfo* dropped) {
   Level level = d.severity == Severity::Error ? Level::Error : Level::Warn;
   if (!enabled(level)) return;
   std::string line;
@@ -60,6 +63,7 @@ void diagnostic(const Diagnostic& d) {
     j["line"] = d.loc.line;
     j["column"] = d.loc.column;
     j["message"] = d.message;
+    if (dropped) j["dropped"] = {{"kind", dropped->kind}, {"what", dropped->what}, {"count", dropped->count}};
     // A value mounted from a smart asset: where each file referenced the next.
     if (d.loc.via) {
       nlohmann::ordered_json chain = nlohmann::ordered_json::array();
@@ -75,5 +79,11 @@ void diagnostic(const Diagnostic& d) {
   std::lock_guard lock(gWriteMutex);
   std::fwrite(line.data(), 1, line.size(), stderr);
 }
+
+}  // namespace
+
+void diagnostic(const Diagnostic& d) { writeDiagnostic(d, nullptr); }
+
+void dropped(const DroppedWarning& w) { writeDiagnostic(w.diagnostic, &w.info); }
 
 }  // namespace sdg::log

@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "core/diagnostics.h"
+#include "core/dropped.h"
 
 namespace sdg::log {
 
@@ -19,6 +20,9 @@ void write(Level level, std::string_view message);
 // A located problem: "file:line:col: error: message" as text (the compiler
 // convention editors parse), or a JSON object with separate fields.
 void diagnostic(const Diagnostic& d);
+// A loss (core/dropped.h): the diagnostic, with `"dropped": {kind, what,
+// count}` in the JSON form.
+void dropped(const DroppedWarning& w);
 
 inline void debug(std::string_view m) { write(Level::Debug, m); }
 inline void info(std::string_view m) { write(Level::Info, m); }

@@ -81,6 +81,29 @@ void writeSimulationFrame(const Stage& stage, Renderer& renderer, const std::vec
     }
 }
 
+// True when more than 99.5 % of the pixels are black (every channel below
+// 3/255): the frame shows nothing. Stops as soon as enough pixels are lit,
+// so a frame that shows something costs a few rows.
+bool frameIsBlack(const std::vector<uint8_t>& rgba) {
+  const size_t pixels = rgba.size() / 4;
+  const size_t litAllowed = pixels / 200;  // 0.5 %
+  size_t lit = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint8_t* p = &rgba[4 * i];
+    if (p[0] >= 3 || p[1] >= 3 || p[2] >= 3)
+      if (++lit > litAllowed) return false;
+  }
+  return pixels > 0;
+}
+
+// The lights a frame had, for the black-frame warning.
+std::string lightsOf(const RenderList& list) {
+  if (list.lights.empty()) return "no light";
+  std::string out = list.lights.size() == 1 ? "1 light (" : std::to_string(list.lights.size()) + " lights (";
+  for (size_t i = 0; i < list.lights.size() && i < 4; ++i) out += (i ? ", " : "") + list.lights[i].path;
+  return out + (list.lights.size() > 4 ? ", ...)" : ")");
+}
+
 // Render products: capture.cameras, or every camera of the stage; each is
 // named after its camera prim.
 std::vector<std::string> productCameras(const Scene& scene, const RenderList& list, const SourceLoc& sceneLoc) {
@@ -128,6 +151,9 @@ class DatasetRun {
   void submit(std::shared_ptr<ProductFrame> frame);
   void keepFinishedFramesAfterFailure();
   void finish();
+  void warnOnce(bool& said, const std::string& message);
+  void checkLabels();
+  void checkBlack(const ProductFrame& frame);
 
   LoadedScene& loaded_;
   Scene& scene_;
@@ -170,6 +196,7 @@ class DatasetRun {
   std::shared_ptr<FrameScene> awaitingNext_;
   std::vector<std::shared_ptr<ProductFrame>> held_;
   uint64_t queued_ = 0, sequence_ = 0;
+  bool saidNoLabels_ = false, saidBlack_ = false;
   // Declared last: when a write fails and the run unwinds, the pool's
   // destructor joins the workers before what their jobs refer to goes.
   std::unique_ptr<WritePool> pool_;
@@ -322,6 +349,7 @@ void DatasetRun::runIteration(uint64_t iteration) {
       continue;
     }
     if (recorder_) recorder_->recordFrame(frame, runtime.timeline().time(), scene_.stage);
+    if (!saidNoLabels_) checkLabels();
     renderFrame(renderer, frame, iteration, first, previous, current);
     previous = current;
   }
@@ -413,8 +441,38 @@ void DatasetRun::collectPending() {
   if (frame.hasMasks) renderer.collectCoverage(pending.slot, frame.masks);
   // Timed with the render stage around collectPending()'s callers.
   colorRenderer().collect(pending.slot, frame.passes);
+  if (!saidBlack_) checkBlack(frame);
   if (frame.scene->nextKnown) submit(pending.frame);
   else held_.push_back(pending.frame);  // until the next frame's poses are known
+}
+
+void DatasetRun::warnOnce(bool& said, const std::string& message) {
+  if (said) return;
+  said = true;
+  log::warn(message);
+  result_.warnings.push_back(message);
+}
+
+// Boxes and segmentation come from semantic labels: a stage without any,
+// after the pre-roll has spawned what it spawns, gives empty ones.
+void DatasetRun::checkLabels() {
+  if (!writers_.needs.labels) {
+    saidNoLabels_ = true;
+    return;
+  }
+  bool any = false;
+  scene_.stage.traverse([&](const Prim& p) { any = any || !p.semantics().empty(); });
+  if (any) saidNoLabels_ = true;
+  else
+    warnOnce(saidNoLabels_, "no prim on the stage has a semantic label, so boxes and segmentation are empty; label "
+                            "prims with `semantics: {class: NAME}` (YAML) or Isaac's semantics attributes (USD)");
+}
+
+void DatasetRun::checkBlack(const ProductFrame& frame) {
+  if (!frameIsBlack(frame.passes.rgba)) return;
+  warnOnce(saidBlack_, "frame " + std::to_string(frame.frame) + " of camera " + frame.camera.path +
+                           " is black (over 99.5 % of its pixels); the stage had " + lightsOf(frame.scene->list) +
+                           ": check the lights' intensity and placement, and what the camera faces");
 }
 
 ColorRenderer& DatasetRun::colorRenderer() {

@@ -53,6 +53,8 @@ struct DatasetRunResult {
   StageTimes stages;
   uint64_t simulationFrames = 0;  // renderSimulation images per camera
   std::vector<nlohmann::ordered_json> settle;  // settle quality per stacked surface
+  // Said once each while running: no semantic label on the stage, a black frame.
+  std::vector<std::string> warnings;
 };
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options);

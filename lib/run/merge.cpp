@@ -66,6 +66,8 @@ MergeResult mergeShards(const std::string& dir) {
   if (!shards.empty()) {
     j["version"] = shards.front()["version"];
     j["scene"] = shards.front()["scene"];
+    // Every shard loads the same scene: its losses are the first shard's.
+    if (shards.front().contains("dropped")) j["dropped"] = shards.front()["dropped"];
   }
   j["scene_hash"] = info.sceneHash;
   j["inputs_identity"] = info.inputs.identity();
@@ -82,6 +84,7 @@ MergeResult mergeShards(const std::string& dir) {
     busiest = std::max(busiest, total);
     perShard.push_back({{"shard", s["shard"]}, {"frames", s["frames"]}, {"frames_resumed", s["frames_resumed"]},
                         {"pre_rolls", s["pre_rolls"]}, {"seconds", s["seconds"]}, {"peak_rss_mb", s["peak_rss_mb"]}});
+    if (s.contains("warnings") && !s["warnings"].empty()) perShard.back()["warnings"] = s["warnings"];
   }
   j["slowest_shard_seconds"] = busiest;
   j["shards"] = std::move(perShard);

@@ -46,6 +46,15 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
   j["frames_per_second"] = r.seconds > 0 ? double(r.frames) / r.seconds : 0.0;
   j["peak_rss_mb"] = peakRssMb();
   j["settle"] = r.settle;
+  // What the scene's USD files had that the stage did not carry over, and
+  // what the run found wrong with its frames (docs/cli.md).
+  nlohmann::ordered_json dropped = nlohmann::ordered_json::array();
+  if (in.dropped)
+    for (const DroppedWarning& d : *in.dropped)
+      dropped.push_back({{"kind", d.info.kind}, {"what", d.info.what}, {"count", d.info.count},
+                         {"first", d.diagnostic.loc.str()}, {"message", d.diagnostic.message}});
+  j["dropped"] = std::move(dropped);
+  j["warnings"] = r.warnings;
   return j;
 }
 

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/dropped.h"
 #include "run/dataset_run.h"
 
 namespace sdg {
@@ -16,6 +17,7 @@ struct RunSummaryInputs {
   const DatasetRunOptions* options = nullptr;
   const DatasetRunResult* result = nullptr;
   double loadSeconds = 0;
+  const std::vector<DroppedWarning>* dropped = nullptr;  // LoadedScene::dropped
 };
 
 nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in);

@@ -216,6 +216,7 @@ LoadedScene loadUsdStageForRun(const SceneRequest& request) {
     return attacher.attach(path, where);
   };
   Scene scene = importUsdScene(request.scenePath, registry.catalog(), options, report);
+  for (const std::string& w : report.warnings) log::debug(w);  // each place a loss summary counts
   for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
   attacher.sayNote();
   Diagnostics diag;
@@ -240,8 +241,9 @@ LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   }
   std::vector<std::string> pluginFiles = request.plugins;
   for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
-  return LoadedScene{std::move(registry), std::move(scene), std::move(assets), std::move(scriptFiles), std::move(mounted),
-                     std::move(pluginFiles)};
+  return LoadedScene{std::move(registry),    std::move(scene),      std::move(assets),
+                     std::move(scriptFiles), std::move(mounted),    std::move(pluginFiles),
+                     report.losses.warnings()};
 }
 
 }  // namespace
@@ -291,8 +293,9 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   for (std::string& file : scriptFiles)
     if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(std::move(file));
   scriptFiles = std::move(unique);
-  return LoadedScene{std::move(registry), std::move(scene),          std::move(assets),
-                     std::move(scriptFiles), assetLibrary.files(), std::move(pluginFiles)};
+  return LoadedScene{std::move(registry),    std::move(scene),     std::move(assets),
+                     std::move(scriptFiles), assetLibrary.files(), std::move(pluginFiles),
+                     assetLibrary.usdLosses().warnings()};
 }
 
 void reloadBehaviorScript(const std::string& path) { scripting::reloadScript(path); }

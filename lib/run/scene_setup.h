@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "assets/asset_resolver.h"
+#include "core/dropped.h"
 #include "render/raster/renderer.h"
 #include "behavior/registry.h"
 #include "behavior/behavior.h"
@@ -47,6 +48,10 @@ struct LoadedScene {
   // loaded (absolute): with the above, what the run's identity hashes.
   std::vector<std::string> mountedFiles;
   std::vector<std::string> pluginFiles;
+  // What the scene's USD files have that the stage does not carry over: one
+  // warning per kind of loss (scene_io/usd_losses.h), for the commands to
+  // print; `validate --strict` fails on them.
+  std::vector<DroppedWarning> dropped;
 };
 
 // Command-line overrides of the scene's render section (--resolution,

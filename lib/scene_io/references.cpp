@@ -384,6 +384,7 @@ void AssetLibrary::mountUsd(const ReferenceSpec& ref, const std::string& file, c
   }
   UsdImportReport report;
   importUsdPrims(composed, root, stage, mountPath, catalog, options, report, diag);
+  usdLosses_.append(report.losses);
   for (const std::string& layer : report.layers) {
     const std::string f = absoluteNormal(usd::splitPackagePath(layer).first);
     if (std::find(usdFiles_.begin(), usdFiles_.end(), f) == usdFiles_.end()) usdFiles_.push_back(f);

@@ -25,6 +25,7 @@
 #include "scene_io/overrides.h"
 #include "scene_io/raw_node.h"
 #include "scene_io/scene.h"
+#include "scene_io/usd_losses.h"
 #include "scene_io/scene_document.h"
 #include "stage/behavior_spec.h"
 #include "stage/stage.h"
@@ -94,6 +95,8 @@ class AssetLibrary {
   size_t filesRead() const { return assets_.size(); }
   // Every asset file read (absolute, normalized, sorted).
   std::vector<std::string> files() const;
+  // What the USD files mounted so far have that the stage does not carry over.
+  const UsdLosses& usdLosses() const { return usdLosses_; }
 
  private:
   struct Asset;
@@ -111,6 +114,7 @@ class AssetLibrary {
   const usd::ComposedStage& usdStage(const std::string& file, const usd::ComposeOptions& options);
 
   std::map<std::string, std::shared_ptr<const usd::ComposedStage>> usdStages_;  // by file and choices
+  UsdLosses usdLosses_;
   std::vector<std::string> usdFiles_;                       // USD layers (packages) mounted, absolute
   std::vector<VariantSelection> selections_;
   std::vector<bool> selectionUsed_;

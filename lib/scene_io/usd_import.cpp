@@ -109,6 +109,16 @@ class Importer {
     report_.warnings.push_back(message);
   }
 
+  // Prim metadata that changes what is drawn and that nothing here reads:
+  // applied schemas that change the look, value clips.
+  void noteUnreadMetadata(const ComposedPrim& prim, bool isLight) {
+    for (const std::string& schema : prim.apiSchemas)
+      if (appliedSchemaChangesAppearance(schema, isLight))
+        report_.losses.note(UsdLossKind::AppliedSchema, schema, prim.loc, prim.path);
+    for (const char* clips : {"clips", "clipSets"})
+      if (prim.metadata.count(clips)) report_.losses.note(UsdLossKind::Composition, "value clips", prim.loc, prim.path);
+  }
+
   // `outerUnits` go before the prim's own ops (the root layer's units into
   // the stage's); a units change on the prim goes after them, as Omniverse
   // appends its unitsResolve ops.
@@ -116,11 +126,14 @@ class Importer {
     if (!prim.defined || prim.abstract || !prim.active) return;
     if (handledElsewhere(prim.typeName)) return;
     std::optional<PrimType> type = stageTypeFor(prim.typeName);
+    const bool knownType = type.has_value();
     if (!type) {
+      report_.losses.note(UsdLossKind::PrimType, prim.typeName, prim.loc, prim.path);
       warnOnce(prim.loc, "type:" + prim.typeName,
                prim.path + ": USD type " + prim.typeName + " has no stage counterpart; imported as an Xform (a group)");
       type = PrimType::Xform;
     }
+    noteUnreadMetadata(prim, primTypeInfo(*type).light);
     const std::string stagePath = mapPath(prim.path);
     Prim& p = stage_.definePrim(stagePath, *type);
     p.loc() = prim.loc;
@@ -135,8 +148,10 @@ class Importer {
       scale *= usd_map::unitsScale(prim.unitsChange->asset, prim.unitsChange->into);
     }
     if (primTypeInfo(*type).xformable) p.xformOps() = std::move(ops);
-    else if (!ops.empty() && !(ops.size() == outerUnits.size()))
+    else if (!ops.empty() && !(ops.size() == outerUnits.size())) {
+      report_.losses.note(UsdLossKind::Attribute, "xformOps of a " + prim.typeName, prim.loc, prim.path);
       warnOnce(prim.loc, "xform:" + prim.path, prim.path + ": a " + prim.typeName + " has no transform; its xform ops are ignored");
+    }
 
     if (*type == PrimType::Material) {
       importUsdMaterial(composed_, prim, p, diag_, report_);
@@ -145,7 +160,7 @@ class Importer {
       return;  // its shaders are the material's
     }
     importMetadata(prim, p);
-    importAttributes(prim, p, *type, scale);
+    importAttributes(prim, p, *type, scale, knownType);
     if (*type == PrimType::Mesh && !importMeshAsset(prim, p)) importMesh(prim, p);
     importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
                         report_, diag_);
@@ -154,7 +169,9 @@ class Importer {
         importPrim(*c, p, {}, scale);
   }
 
-  void importAttributes(const ComposedPrim& prim, Prim& p, PrimType type, double unitScale) {
+  // `knownType` false: the prim's type is already reported as dropped, and
+  // with it every attribute of that type.
+  void importAttributes(const ComposedPrim& prim, Prim& p, PrimType type, double unitScale, bool knownType) {
     std::vector<std::string> fallbacks;  // written by export-usd for other tools only
     if (auto custom = prim.metadata.find("customData"); custom != prim.metadata.end() && custom->second.dictionary)
       if (auto list = custom->second.dictionary->find(kFallbacksKey); list != custom->second.dictionary->end())
@@ -165,10 +182,12 @@ class Importer {
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
-        if (!spec && !quietlyIgnored(prop.name))
+        if (!spec && !quietlyIgnored(prop.name)) {
+          if (knownType) report_.losses.note(UsdLossKind::Attribute, prop.name, prop.loc, prim.path);
           warnOnce(prop.loc, "attr:" + prim.typeName + ":" + prop.name,
                    prim.path + "." + prop.name + ": not a " + std::string(primTypeInfo(type).name) +
                        " attribute of the stage; ignored (and on every other prim)");
+        }
         continue;
       }
       std::optional<Value> v = usd_map::toStageValue(prop.value, spec->type);
@@ -249,6 +268,8 @@ class Importer {
       const ComposedProperty* indices = c->property("indices");
       const ComposedProperty* elementType = c->property("elementType");
       if (elementType && !elementType->value.empty() && elementType->value.strings[0] != "face") {
+        report_.losses.note(UsdLossKind::Binding, "a material bound to a GeomSubset of " + elementType->value.strings[0] + "s",
+                            c->loc, c->path);
         warnOnce(c->loc, "subset:" + c->path, c->path + ": only face subsets bind materials; ignored");
         continue;
       }
@@ -327,7 +348,10 @@ void importUsdPrims(const usd::ComposedStage& composed, const std::string& sourc
   for (const std::string& layer : composed.layers)
     if (std::find(report.layers.begin(), report.layers.end(), layer) == report.layers.end())
       report.layers.push_back(layer);
-  for (const std::string& w : composed.warnings) report.warnings.push_back(w);
+  for (const usd::ComposeWarning& w : composed.warnings) {
+    report.losses.note(UsdLossKind::Composition, w.feature, w.loc, w.loc.known() ? "" : w.message);
+    report.warnings.push_back(w.message);
+  }
   Importer importer(composed, stage, catalog, options, report, diag);
   importer.run(sourceRoot, mountPath);
 }

@@ -33,6 +33,7 @@
 
 #include "core/diagnostics.h"
 #include "scene_io/scene.h"
+#include "scene_io/usd_losses.h"
 #include "stage/behavior_spec.h"
 #include "usd/compose.h"
 
@@ -64,10 +65,13 @@ struct UsdImportOptions {
 };
 
 // What importing found besides the stage: script files the prims list
-// (absolute), every layer read (for the run's identity), warnings said once.
+// (absolute), every layer read (for the run's identity), what the stage
+// does not carry over: counted by kind (`losses`, what commands print) and
+// each place in words (`warnings`, for --verbose).
 struct UsdImportReport {
   std::vector<std::string> scriptFiles;
   std::vector<std::string> layers;
+  UsdLosses losses;
   std::vector<std::string> warnings;
 };
 

@@ -394,11 +394,14 @@ void importUsdMaterial(const usd::ComposedStage& composed, const usd::ComposedPr
       break;
     case SurfaceKind::Unsupported:
       stagePrim.setAttribute("inputs:diffuse_color_constant", Value::makeColor3f(Vec3f(0.5f, 0.5f, 0.5f)));
+      report.losses.note(UsdLossKind::MaterialNetwork, surface.what, material.loc, material.path);
       report.warnings.push_back("material " + material.path + where(material) + " has " + surface.what +
                                 "; only UsdPreviewSurface and MDL OmniPBR are read, so prims bound to it keep "
                                 "their primvars:displayColor (grey when none)");
       return;
   }
+  for (const std::string& note : notes)
+    report.losses.note(UsdLossKind::MaterialInput, note.substr(0, note.find(" (")), material.loc, material.path);
   if (!notes.empty())
     report.warnings.push_back("material " + material.path + where(material) + ": not carried over: " +
                               text::join(notes, "; "));

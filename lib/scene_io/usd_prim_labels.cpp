@@ -68,6 +68,8 @@ const usd::ComposedPrim* boundMaterial(const usd::ComposedStage& composed, const
   const std::string& target = rel.targets.front();
   const usd::ComposedPrim* material = composed.prim(target);
   if (!material || !material->defined) {
+    report.losses.note(UsdLossKind::Binding, "a material binding to a prim not on the composed stage", rel.loc,
+                       prim.path);
     report.warnings.push_back(whereOf(rel.loc) + prim.path + "." + rel.name + ": the material " + target +
                               " is not on the composed stage (a layer lib/usd cannot read, such as MaterialX's "
                               ".mtlx, or a typo); the prim keeps its primvars:displayColor");
@@ -89,9 +91,11 @@ void importBinding(const usd::ComposedStage& composed, const usd::ComposedPrim& 
                    const std::function<std::string(const std::string&)>& mapPath, UsdImportReport& report,
                    Diagnostics& diag) {
   for (const usd::ComposedProperty& p : prim.properties)
-    if (p.isRelationship && p.name.starts_with("material:binding:collection"))
+    if (p.isRelationship && p.name.starts_with("material:binding:collection")) {
+      report.losses.note(UsdLossKind::Binding, "a collection-based material binding", p.loc, prim.path);
       report.warnings.push_back(whereOf(p.loc) + prim.path + "." + p.name +
                                 ": collection-based material bindings are not read; bind the material on the prims");
+    }
   const usd::ComposedProperty* rel = bindingRelationship(prim);
   if (rel) {
     if (const usd::ComposedPrim* material = boundMaterial(composed, prim, *rel, report, diag))
@@ -109,6 +113,7 @@ void importBinding(const usd::ComposedStage& composed, const usd::ComposedPrim& 
     if (const usd::ComposedPrim* material = boundMaterial(composed, *subsets[0].first, *subsets[0].second, report, diag))
       stagePrim.material() = MaterialBinding{mapPath(material->path), bindingStrength(*subsets[0].second)};
   } else if (subsets.size() > 1) {
+    report.losses.note(UsdLossKind::Binding, "materials bound to several GeomSubsets of one mesh", prim.loc, prim.path);
     report.warnings.push_back(whereOf(prim.loc) + prim.path + ": " + std::to_string(subsets.size()) +
                               " GeomSubsets bind materials; the stage binds one material per prim, so none of "
                               "them is bound (the mesh keeps its displayColor)");

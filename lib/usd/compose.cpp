@@ -231,7 +231,7 @@ void Composer::composePrim(const std::string& primPath, const PrimIndex* parentI
   prim.metadata = composeMetadata(opinions, isStructuralPrimField);
   for (const Opinion& o : opinions)
     if (o.spec->field(field::kRelocates))
-      stage_.warnings.push_back(o.spec->loc.str() + ": relocates are not supported; ignored");
+      stage_.warnings.push_back({o.spec->loc, "relocates", o.spec->loc.str() + ": relocates are not supported; ignored"});
 
   for (const auto& [set, selection] : index.selections) {
     ComposedVariantSet vs{set, {}, selection};
@@ -295,9 +295,10 @@ std::vector<std::string> Composer::composePaths(const PrimIndex& index, const st
           if (std::optional<std::string> mapped = index.mapToRoot(node, p)) {
             out.push_back(*mapped);
           } else if (report) {
-            stage_.warnings.push_back(composedPath + ": the path <" + p + "> written at " + spec->loc.str() +
-                                      " lies outside the scope of the " + arcTypeName(node.arc) +
-                                      " that brings it in; ignored");
+            stage_.warnings.push_back({spec->loc, "path outside a reference's scope",
+                                       composedPath + ": the path <" + p + "> written at " + spec->loc.str() +
+                                           " lies outside the scope of the " + arcTypeName(node.arc) +
+                                           " that brings it in; ignored"});
           }
         }
         return out;

@@ -114,6 +114,14 @@ struct ComposedPrim {
   const ComposedProperty* property(const std::string& name) const;
 };
 
+// Something USD would report and go on from. `feature` names what was left
+// out, for a summary of losses ("relocates", "non-USD reference", ...).
+struct ComposeWarning {
+  SourceLoc loc;        // where it was written (unknown for some)
+  std::string feature;
+  std::string message;  // whole, starting with the location where there is one
+};
+
 struct ComposedStage {
   std::string rootLayer;
   LayerUnits units;  // the root layer's
@@ -124,7 +132,7 @@ struct ComposedStage {
   std::vector<std::string> layers;             // every layer opened, in the order opened
   // Things USD would report and go on from: targets outside a reference's
   // scope, variant selections naming no variant, relocates (not supported).
-  std::vector<std::string> warnings;
+  std::vector<ComposeWarning> warnings;
 
   const ComposedPrim* prim(const std::string& path) const;
   std::vector<std::string> rootPrims() const;  // paths of the prims under "/"

@@ -182,7 +182,8 @@ void IndexBuilder::addReferenceArcs(PrimIndex& index, int n, const std::string& 
     if (!internal) {
       std::string resolved = resolveAssetPath(ref.assetPath, authoring.identifier);
       if (!isUsdLayerPath(resolved)) {  // MaterialX and other formats USD reads through plugins
-        warnings_.push_back(at.str() + ": " + arcText + ": not a USD layer (.usd, .usda, .usdc, .usdz); ignored");
+        warnings_.push_back({at, "reference to a non-USD file",
+                             at.str() + ": " + arcText + ": not a USD layer (.usd, .usda, .usdc, .usdz); ignored"});
         continue;
       }
       target = &cache_.stack(resolved, at, arcText);
@@ -370,7 +371,7 @@ bool IndexBuilder::expandVariants(PrimIndex& index, const std::string& primPath)
                                                  return list;
                                                }() + ")");
       if (overridden) throw usdErrorAt(SourceLoc(), "variant override " + message);
-      warnings_.push_back(message + "; no variant applied");
+      warnings_.push_back({SourceLoc(), "variant selection naming no variant", message + "; no variant applied"});
       return true;
     }
     Node variant;

@@ -98,7 +98,7 @@ struct PrimIndex {
 class IndexBuilder {
  public:
   IndexBuilder(LayerCache& cache, const LayerStack& rootStack, const ComposeOptions& options,
-               std::vector<std::string>& warnings)
+               std::vector<ComposeWarning>& warnings)
       : cache_(cache), rootStack_(rootStack), options_(options), warnings_(warnings) {}
 
   // The index of the prim at `path` (root namespace), from its parent's
@@ -124,7 +124,7 @@ class IndexBuilder {
   LayerCache& cache_;
   const LayerStack& rootStack_;
   const ComposeOptions& options_;
-  std::vector<std::string>& warnings_;
+  std::vector<ComposeWarning>& warnings_;
   std::vector<std::string> usedOverrides_;
 };
 

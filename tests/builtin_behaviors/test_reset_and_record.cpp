@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "run/timeline_run.h"
+#include "scratch_name.h"
 
 using namespace sdg;
 
@@ -35,7 +36,7 @@ std::string readFile(const std::string& path) {
 
 std::string recordOf(const std::string& scene, int64_t seed) {
   LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = scene});
-  std::string path = (std::filesystem::temp_directory_path() / ("sdg_record_" + std::to_string(seed) + ".jsonl")).string();
+  std::string path = test::uniqueTempPath("sdg_record_" + std::to_string(seed)).string() + ".jsonl";
   runTimeline(loaded, TimelineRunOptions{12, seed, path, ""});
   std::string text = readFile(path);
   std::filesystem::remove(path);

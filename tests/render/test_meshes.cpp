@@ -9,6 +9,7 @@
 #include "assets/mesh_loader.h"
 #include "assets/primitives.h"
 #include "core/diagnostics.h"
+#include "scratch_name.h"
 
 using namespace sdg;
 
@@ -16,7 +17,8 @@ namespace {
 std::string meshPath(const char* name) { return std::string(SDG_SOURCE_DIR "/tests/data/meshes/") + name; }
 
 std::string writeTemp(const std::string& name, const std::string& content) {
-  auto path = std::filesystem::temp_directory_path() / ("sdg_" + name);
+  // The name's extension kept last: the loader goes by it.
+  auto path = test::uniqueTempPath("sdg").concat("_" + name);
   std::ofstream(path, std::ios::binary) << content;
   return path.string();
 }

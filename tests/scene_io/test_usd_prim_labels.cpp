@@ -8,6 +8,7 @@
 #include "scene_io/usd_import.h"
 #include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_fixtures.h"
+#include "scratch_name.h"
 
 using namespace sdg;
 using sdg::test::builtinCatalog;
@@ -195,7 +196,7 @@ def Cube "Box"
 
 TEST_CASE("usd labels: unknown scripts are located errors, sdgbehave scripts are reported for the loader",
           "[scene_io][usd]") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sdg_usd_labels_test";
+  const std::filesystem::path dir = test::uniqueTempPath("sdg_usd_labels_test");
   std::filesystem::create_directories(dir);
   const std::string mine = (dir / "wobble.py").string();
   std::ofstream(mine) << "import sdgbehave\n\nBEHAVIOR_NS = \"wobble\"\n";

@@ -76,7 +76,7 @@ def "B" (references = @./asset.usda@</Asset/Geom>) {}
   // The binding of /B points outside the referenced prim: dropped, with a warning.
   CHECK(stage.prim("/B")->property("material:binding")->targets.empty());
   REQUIRE(stage.warnings.size() == 2);
-  CHECK_THAT(stage.warnings[0], Catch::Contains("/B.material:binding: the path </Asset/Looks/Mat> written at asset.usda:13:9 lies outside the scope of the reference"));
+  CHECK_THAT(stage.warnings[0].message, Catch::Contains("/B.material:binding: the path </Asset/Looks/Mat> written at asset.usda:13:9 lies outside the scope of the reference"));
   CHECK(stage.rootPrims() == names({"/A", "/B"}));
   CHECK(layers.reads == names({"root.usda", "asset.usda"}));  // each layer read once
 }

@@ -115,8 +115,8 @@ TEST_CASE("compose samples: relationship targets across internal and external re
   CHECK(bad.units.upAxis == "Z");
   CHECK(prop(bad, "/World/washer", "material:binding").targets.empty());
   REQUIRE(bad.warnings.size() == 1);
-  CHECK_THAT(bad.warnings[0], Catch::Contains("/World/washer.material:binding: the path </World/Looks/metal> written at"));
-  CHECK_THAT(bad.warnings[0], Catch::Contains("washer.usda:183:13 lies outside the scope of the reference"));
+  CHECK_THAT(bad.warnings[0].message, Catch::Contains("/World/washer.material:binding: the path </World/Looks/metal> written at"));
+  CHECK_THAT(bad.warnings[0].message, Catch::Contains("washer.usda:183:13 lies outside the scope of the reference"));
 
   for (const char* file : {"InternalReferenceTest.usda", "SublayeredInternalReferenceTest.usda"}) {
     INFO(file);
@@ -138,7 +138,7 @@ TEST_CASE("compose samples: MaterialX references are not USD layers and are skip
   ComposedStage stage = composeSample("test_assets/MaterialXTest/basic.usda");
   CHECK(stage.prims.size() == 2);
   REQUIRE(stage.warnings.size() == 1);
-  CHECK_THAT(stage.warnings[0], Catch::Contains("basic.usda:8:1: reference @./usd_preview_surface_plastic.mtlx@</MaterialX>: not a USD layer"));
+  CHECK_THAT(stage.warnings[0].message, Catch::Contains("basic.usda:8:1: reference @./usd_preview_surface_plastic.mtlx@</MaterialX>: not a USD layer"));
   ComposedStage coords = composeSample("test_assets/TextureCoordinateTest/TextureCoordinateTest.usda");
   CHECK(coords.prims.size() == 39);
   CHECK(coords.warnings.empty());

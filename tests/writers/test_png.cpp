@@ -7,14 +7,17 @@
 
 #include "assets/image.h"
 #include "writers/png_encoder.h"
+#include "scratch_name.h"
 
 using namespace sdg;
 
 namespace {
 ImageRgba8 roundTrip(const std::vector<uint8_t>& png) {
-  auto path = std::filesystem::temp_directory_path() / "sdg_png_roundtrip.png";
+  const auto path = sdg::test::uniqueTempPath("sdg_png_roundtrip").concat(".png");
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-  return loadImageRgba8(path.string(), TextureData::Color);
+  ImageRgba8 image = loadImageRgba8(path.string(), TextureData::Color);
+  std::filesystem::remove(path);
+  return image;
 }
 }  // namespace
 

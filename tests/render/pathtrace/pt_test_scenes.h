@@ -16,6 +16,7 @@
 #include "render/pathtrace/path_tracer.h"
 #include "render/render_list.h"
 #include "scene_io/scene_loader.h"
+#include "scratch_name.h"
 
 namespace sdg::pttest {
 
@@ -53,7 +54,10 @@ inline std::string sphereZoneObj(const std::string& name, double theta0, double 
   const std::filesystem::path file = scratchFolder("meshes") / name;
   if (std::filesystem::exists(file)) return file.string();
   const int columns = 256;
-  std::ofstream out(file.string() + ".tmp");
+  // Written under a name of this process's own, then renamed: another test
+  // process may be making the same file at the same time.
+  const std::string scratch = file.string() + test::uniqueSuffix() + ".tmp";
+  std::ofstream out(scratch);
   for (int j = 0; j <= rows; ++j)
     for (int i = 0; i <= columns; ++i) {
       const double theta = theta0 + (theta1 - theta0) * j / rows, phi = 2 * kPi * i / columns;
@@ -70,7 +74,7 @@ inline std::string sphereZoneObj(const std::string& name, double theta0, double 
         out << "f " << b << "//" << b << ' ' << d << "//" << d << ' ' << c << "//" << c << '\n';
     }
   out.close();
-  std::filesystem::rename(file.string() + ".tmp", file);
+  std::filesystem::rename(scratch, file);
   return file.string();
 }
 

@@ -1,0 +1,24 @@
+#pragma once
+// A name no other test process uses. CTest runs test cases as separate
+// processes in parallel (`ctest -j`), so a scratch file with a fixed name
+// can be written by two of them at once; this one carries the process id
+// and a per-process count.
+#include <atomic>
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+namespace sdg::test {
+
+inline std::string uniqueSuffix() {
+  static std::atomic<unsigned> counter{0};
+  return "." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
+// `stem` + the suffix, in the system's temporary folder.
+inline std::filesystem::path uniqueTempPath(const std::string& stem) {
+  return std::filesystem::temp_directory_path() / (stem + uniqueSuffix());
+}
+
+}  // namespace sdg::test
