@@ -13,6 +13,7 @@
 #include "assets/image.h"
 #include "assets/mesh_loader.h"
 #include "assets/packaged_image.h"
+#include "core/git_lfs.h"
 #include "core/log.h"
 #include "core/text.h"
 #include "stage/prim_types.h"
@@ -43,6 +44,14 @@ constexpr size_t kHeadBytes = 4096;  // how much of a mesh file the check reads
 std::string_view skipBomAndSpace(std::string_view head) {
   if (head.starts_with("\xEF\xBB\xBF")) head.remove_prefix(3);
   while (!head.empty() && std::isspace(static_cast<unsigned char>(head.front()))) head.remove_prefix(1);
+  return head;
+}
+
+// Up to `n` first bytes of the stream.
+std::string readHead(std::istream& in, size_t n) {
+  std::string head(n, '\0');
+  in.read(head.data(), std::streamsize(n));
+  head.resize(size_t(in.gcount()));
   return head;
 }
 
@@ -298,6 +307,11 @@ std::optional<std::string> fileProblem(const std::string& entry, FileKind kind, 
   std::ifstream probe(*path, std::ios::binary);
   if (!probe || probe.peek() == std::ifstream::traits_type::eof())
     return noun + " " + text::quote(file) + " (" + *path + ") cannot be read" + (probe ? ": it is empty" : "");
+  if (std::string head = readHead(probe, 64); isGitLfsPointer(head))
+    return noun + " " + text::quote(file) + ": " +
+           gitLfsPointerMessage(*path, kind == FileKind::Image  ? "an image"
+                                       : kind == FileKind::Mesh ? "a mesh"
+                                                                : "the file it stands for");
   if (kind == FileKind::Image) return imageProblem(file, *path);
   if (mesh && mesh->sniff == sniffUsd) return usdMeshProblem(file, *path, *mesh);
   if (mesh) return meshHeaderProblem(file, *path, *mesh);

@@ -113,7 +113,10 @@ std::string formatFromExtension(const std::string& name) {
         for (const std::string& ext : extensions) m.emplace(ext, format);
     return m;
   }();
-  std::string ext = std::filesystem::path(name).extension().string();
+  // A package entry, "pkg.usdz[0/wood.tga]" (nested: "...tga]]"), by its entry's name.
+  std::string file = name;
+  while (!file.empty() && file.back() == ']' && file.find('[') != std::string::npos) file.pop_back();
+  std::string ext = std::filesystem::path(file).extension().string();
   if (ext.empty()) return "";
   ext.erase(0, 1);
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));

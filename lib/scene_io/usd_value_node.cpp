@@ -1,8 +1,10 @@
 #include "scene_io/usd_value_node.h"
 
 #include <charconv>
+#include <filesystem>
 
 #include "scene_io/value_reader.h"
+#include "usd/layer_io.h"
 
 namespace sdg {
 
@@ -16,6 +18,18 @@ RawNode scalarNode(std::string text, bool quoted, const SourceLoc& loc) {
 }
 
 namespace {
+
+// A resolved asset path as the stage holds it. Composition resolves against
+// layer paths as they were given, relative to the working directory, while
+// the stage resolves relative paths against the scene's folder: made
+// absolute (the package's path, for a package entry), the path means the
+// same file from either, whatever folder the command was started in.
+std::string stageAssetPath(const std::string& resolved) {
+  if (resolved.empty() || resolved.find("://") != std::string::npos) return resolved;
+  auto [file, entry] = usd::splitPackagePath(resolved);
+  const std::string absolute = std::filesystem::absolute(file).lexically_normal().generic_string();
+  return entry.empty() ? absolute : absolute + "[" + entry + "]";
+}
 
 // Shortest text that reads back as the same number (a float's value read
 // back as float, a double's as double).
@@ -69,8 +83,9 @@ RawNode usdValueAsNode(const usd::ComposedProperty& property) {
   if (v.empty() || v.kind == usd::Kind::ValueBlock) return node;
   if (usd::isText(v.kind)) {
     const bool asset = v.kind == usd::Kind::AssetPath;
-    const std::vector<std::string>& items =
-        asset && property.resolvedAssets.size() == v.strings.size() ? property.resolvedAssets : v.strings;
+    std::vector<std::string> items = v.strings;
+    if (asset && property.resolvedAssets.size() == v.strings.size())
+      for (size_t i = 0; i < items.size(); ++i) items[i] = stageAssetPath(property.resolvedAssets[i]);
     if (!v.isArray) return scalarNode(items.empty() ? std::string() : items.front(), true, loc);
     node.kind = RawNode::Kind::Sequence;
     for (const std::string& s : items) node.items.push_back(scalarNode(s, true, loc));

@@ -22,7 +22,8 @@ RawNode scalarNode(std::string text, bool quoted, const SourceLoc& loc);
 // The value of `property` as a node at property.loc: numbers as plain
 // scalars, text as quoted scalars, vectors and arrays as sequences. Asset
 // values are the paths resolved against the layer that wrote them
-// (resolvedAssets). An empty (unauthored or blocked) value is a null node.
+// (resolvedAssets), made absolute so that they name the same file from the
+// scene's folder as from the working directory. An empty (unauthored or blocked) value is a null node.
 RawNode usdValueAsNode(const usd::ComposedProperty& property);
 
 // The property's value read as `spec` says; problems go to `diag` at the

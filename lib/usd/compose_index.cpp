@@ -6,6 +6,7 @@
 // be written anywhere in the index, even inside another variant.
 #include <algorithm>
 
+#include "usd/asset_paths.h"
 #include "usd/compose_internal.h"
 #include "usd/layer_io.h"
 #include "usd/sdf_path.h"
@@ -43,7 +44,7 @@ bool strongerSibling(const Node& a, const Node& b) {
 }
 
 bool isUsdLayerPath(const std::string& resolved) {
-  std::string inner = splitPackagePath(resolved).second;
+  std::string inner = splitPackagePathInner(resolved).second;  // the innermost entry of nested packages
   std::string name = inner.empty() ? resolved : inner;
   size_t dot = name.rfind('.');
   std::string ext = dot == std::string::npos ? "" : name.substr(dot);
@@ -175,7 +176,7 @@ void IndexBuilder::addReferenceArcs(PrimIndex& index, int n, const std::string& 
   for (size_t k = 0; k < items.size(); ++k) {
     const Reference& ref = items[k].item;
     const Layer& authoring = *stack->layers[items[k].layerIndex];
-    SourceLoc at = specLoc(authoring, site);
+    SourceLoc at = ref.loc.known() ? ref.loc : specLoc(authoring, site);
     std::string arcText = describeReference(ref, payload);
     bool internal = ref.assetPath.empty();
     const LayerStack* target = stack;

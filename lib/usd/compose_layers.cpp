@@ -1,8 +1,8 @@
 // Composition: layers read once each, layer stacks (a layer and its
 // sublayers, strongest first, with their time offsets), asset paths
-// resolved against the layer that wrote them, and map functions.
-#include <filesystem>
-
+// resolved against the layer that wrote them (asset_paths.cpp), and map
+// functions.
+#include "usd/asset_paths.h"
 #include "usd/compose_internal.h"
 #include "usd/layer_io.h"
 #include "usd/sdf_path.h"
@@ -10,12 +10,6 @@
 namespace sdg::usd {
 
 namespace {
-
-bool isPackage(const std::string& identifier) {
-  return identifier.size() > 5 && identifier.compare(identifier.size() - 5, 5, ".usdz") == 0;
-}
-
-std::string normal(const std::filesystem::path& p) { return p.lexically_normal().generic_string(); }
 
 LayerUnits unitsOf(const Layer& layer) {
   LayerUnits units;
@@ -28,21 +22,6 @@ LayerUnits unitsOf(const Layer& layer) {
 }
 
 }  // namespace
-
-std::string resolveAssetPath(const std::string& assetPath, const std::string& anchorIdentifier) {
-  if (auto [package, entry] = splitPackagePath(assetPath); !entry.empty())  // "pkg.usdz[inner]" as written
-    return resolveAssetPath(package, anchorIdentifier) + "[" + normal(entry) + "]";
-  if (!assetPath.empty() && assetPath[0] == '/') return normal(assetPath);
-  auto [package, entry] = splitPackagePath(anchorIdentifier);
-  if (!entry.empty() || isPackage(anchorIdentifier)) {
-    // Inside a package: relative to the writing entry's folder, in the package.
-    std::string inner = normal(std::filesystem::path(entry).parent_path() / assetPath);
-    if (inner.rfind("../", 0) != 0 && inner != "..") return package + "[" + inner + "]";
-    // Climbing out of the package root leads to the package's folder.
-    return normal(std::filesystem::path(package).parent_path() / inner.substr(inner == ".." ? 2 : 3));
-  }
-  return normal(std::filesystem::path(anchorIdentifier).parent_path() / assetPath);
-}
 
 LayerReader textLayerFileReader(const ReadLimits& limits) {
   return [limits](const std::string& identifier) { return readTextLayerFile(identifier, limits); };
@@ -71,16 +50,23 @@ const Layer& LayerCache::layer(const std::string& identifier, const SourceLoc& f
     // The root layer's own syntax errors are reported at their file:line:col
     // first, as a YAML scene's are; an arc's name the arc that read them.
     if (!from.known() && e.loc().line > 0) throw;
-    throw usdErrorAt(from, arcText + " (" + identifier + "): " + e.what());
+    // The layer is named once: in the arc's words, or by the message itself
+    // when that starts with it ("x.usd is a Git LFS pointer, ...").
+    std::string why = e.what();
+    if (e.loc().line == 0 && why.starts_with(identifier + ": ")) why.erase(0, identifier.size() + 2);
+    if (why.starts_with(identifier + " ")) throw usdErrorAt(from, arcText + ": " + why);
+    throw usdErrorAt(from, arcText + " (" + identifier + "): " + why);
   } catch (const std::exception& e) {
     throw usdErrorAt(from, arcText + " (" + identifier + "): " + e.what());
   }
   if (!layer->spec("/")) {  // a reader that gives no pseudo-root still yields a usable, empty layer
     layer->specs["/"].type = SpecType::PseudoRoot;
   }
-  if (layer->identifier.empty()) layer->identifier = identifier;
-  // Asset paths in the layer resolve against the identifier it was opened by.
-  layer->identifier = identifier;
+  // Asset paths in the layer resolve against the identifier it was opened
+  // by, except a package opened by its name: its root layer is an entry,
+  // "pkg.usdz[dir/root.usdc]", whose folder in the package anchors them.
+  const bool packageRoot = namesPackage(identifier) && splitPackagePathInner(layer->identifier).first == identifier;
+  if (!packageRoot) layer->identifier = identifier;
   opened_.push_back(identifier);
   return *layers_.emplace(identifier, std::move(layer)).first->second;
 }
@@ -108,7 +94,8 @@ void LayerCache::addSublayers(LayerStack& stack, const Layer& layer, const Layer
   for (size_t i = 0; i < subLayers->strings.size(); ++i) {
     const std::string& written = subLayers->strings[i];
     std::string resolved = resolveAssetPath(written, layer.identifier);
-    SourceLoc at(layer.identifier, root.loc.line, root.loc.column);
+    SourceLoc at = i < layer.subLayerLocs.size() ? layer.subLayerLocs[i]
+                                                 : SourceLoc(layer.identifier, root.loc.line, root.loc.column);
     std::string arcText = "sublayer @" + written + "@";
     for (const std::string& open : chain)
       if (open == resolved) {

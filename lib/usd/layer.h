@@ -105,6 +105,8 @@ struct Layer {
   std::string realPath;    // the file on disk (the package for an entry)
   std::string format;      // "usda" or "usdc"
   std::map<std::string, Spec> specs;
+  // Where each subLayers entry was written (usda; empty for crate layers).
+  std::vector<SourceLoc> subLayerLocs;
 
   const Spec* spec(const std::string& path) const {
     auto it = specs.find(path);

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/git_lfs.h"
+
 namespace sdg::usd {
 
 std::string readFileBytes(const std::string& path, const ReadLimits& limits) {
@@ -25,6 +27,7 @@ std::string readFileBytes(const std::string& path, const ReadLimits& limits) {
 
 Layer readTextLayerFile(const std::string& path, const ReadLimits& limits) {
   std::string bytes = readFileBytes(path, limits);
+  if (isGitLfsPointer(bytes)) throw gitLfsPointerError(path);
   if (bytes.compare(0, 8, "PXR-USDC") == 0)
     throw usdErrorAt(SourceLoc(path, 0, 0), "is a binary crate layer, not a text layer");
   if (bytes.compare(0, 4, "PK\x03\x04") == 0)
@@ -32,6 +35,10 @@ Layer readTextLayerFile(const std::string& path, const ReadLimits& limits) {
   Layer layer = readUsdaLayer(bytes, path, limits);
   layer.realPath = path;
   return layer;
+}
+
+UsdError gitLfsPointerError(const std::string& path) {
+  return UsdError(SourceLoc(path, 0, 0), gitLfsPointerMessage(path, "a USD layer"));
 }
 
 std::pair<std::string, std::string> splitPackagePath(const std::string& path) {

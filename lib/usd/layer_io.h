@@ -40,6 +40,11 @@ std::string readFileBytes(const std::string& path, const ReadLimits& limits = {}
 // file is a UsdError saying so (readLayerFile reads those).
 Layer readTextLayerFile(const std::string& path, const ReadLimits& limits = {});
 
+// A UsdError for a layer file that is a Git LFS pointer (core/git_lfs.h):
+// located at the file, its message naming the file ("x.usd is a Git LFS
+// pointer, not a USD layer: run git lfs pull ...").
+UsdError gitLfsPointerError(const std::string& path);
+
 // "pkg.usdz[inner/a.usdc]" -> {"pkg.usdz", "inner/a.usdc"}; a plain path
 // gives {path, ""}. Nested packages ("a.usdz[b.usdz[c.usda]]") split at the
 // outermost brackets.

@@ -5,6 +5,8 @@
 // built in their own branch: lib/CMakeLists.txt adds this file with them.
 #include "usd/layer_io.h"
 
+#include "core/git_lfs.h"
+
 namespace sdg::usd {
 
 Layer readLayerFile(const std::string& path, const ReadLimits& limits) {
@@ -12,6 +14,7 @@ Layer readLayerFile(const std::string& path, const ReadLimits& limits) {
   if (!entry.empty()) return readPackagedLayer(package, entry, limits);
   std::string bytes = readFileBytes(path, limits);
   if (bytes.compare(0, 4, "PK\x03\x04") == 0) return readPackagedLayer(path, "", limits);
+  if (isGitLfsPointer(bytes)) throw gitLfsPointerError(path);
   Layer layer;
   if (bytes.compare(0, 8, "PXR-USDC") == 0) {
     layer = readCrateLayer(std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()),

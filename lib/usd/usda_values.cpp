@@ -423,6 +423,7 @@ std::vector<Reference> UsdaParser::parseReferenceList(bool payload) {
   auto item = [&] {
     Reference ref;
     const char* arc = payload ? "payload" : "reference";
+    ref.loc = here();
     if (tok_.kind == TokenKind::Asset) {
       if (tok_.text.empty())
         fail(tok_, std::string("a ") + arc + "'s asset path must not be empty (write only the <path> for an internal " +
@@ -463,6 +464,7 @@ void UsdaParser::parseSubLayers(Spec& pseudoRoot) {
     if (tok_.kind != TokenKind::Asset) expected("a sublayer's asset path (@file@)");
     if (tok_.text.empty()) fail(tok_, "a sublayer's asset path must not be empty");
     layers.push_back(decodeString(tok_));
+    layer_.subLayerLocs.push_back(here());
     advance();
     offsets->push_back(tok_.is('(') ? parseLayerOffsetEntries(nullptr) : LayerOffset{});
     if (tok_.is(',')) advance();

@@ -24,6 +24,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/source_loc.h"
+
 namespace sdg::usd {
 
 // Value kinds, named after Sdf's value types (crate files number them in
@@ -92,6 +94,9 @@ struct Reference {
   std::string primPath;
   LayerOffset offset;
   std::shared_ptr<Dictionary> customData;  // null when none is authored
+  // Where the arc was written (usda: its @asset@ or <path>; unknown for
+  // crate layers). Not part of the reference's identity.
+  SourceLoc loc;
 };
 bool operator==(const Reference& a, const Reference& b);
 

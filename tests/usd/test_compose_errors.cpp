@@ -18,11 +18,11 @@ TEST_CASE("compose errors: cycles of references, internal arcs and sublayers", "
   layers.texts["a.usda"] = "#usda 1.0\ndef \"A\" (references = @b.usda@</B>) {}\n";
   layers.texts["b.usda"] = "#usda 1.0\ndef \"B\" (references = @a.usda@</A>) {}\n";
   CHECK(composeError(layers, "a.usda") ==
-        "b.usda:2:1: reference @a.usda@</A> makes a composition cycle: </A> in a.usda leads back to </A>");
+        "b.usda:2:23: reference @a.usda@</A> makes a composition cycle: </A> in a.usda leads back to </A>");
 
   layers.texts["self.usda"] = "#usda 1.0\ndef \"A\" {\n  def \"B\" (references = </A>) {}\n}\n";
   CHECK(composeError(layers, "self.usda") ==
-        "self.usda:3:3: reference </A> makes a composition cycle: </A> in self.usda leads back to </A/B>");
+        "self.usda:3:25: reference </A> makes a composition cycle: </A> in self.usda leads back to </A/B>");
 
   layers.texts["inherit.usda"] = "#usda 1.0\ndef \"A\" (inherits = </A>) {}\n";
   CHECK(composeError(layers, "inherit.usda") ==
@@ -30,37 +30,37 @@ TEST_CASE("compose errors: cycles of references, internal arcs and sublayers", "
 
   layers.texts["s1.usda"] = "#usda 1.0\n(\n subLayers = [@s2.usda@]\n)\n";
   layers.texts["s2.usda"] = "#usda 1.0\n(\n subLayers = [@./s1.usda@]\n)\n";
-  CHECK(composeError(layers, "s1.usda") == "s2.usda:1:1: sublayer cycle: s1.usda -> s2.usda -> s1.usda");
+  CHECK(composeError(layers, "s1.usda") == "s2.usda:3:15: sublayer cycle: s1.usda -> s2.usda -> s1.usda");
 }
 
 TEST_CASE("compose errors: missing files, prims and defaultPrim", "[compose]") {
   MemoryLayers layers;
   layers.texts["root.usda"] = "#usda 1.0\ndef \"A\" {\n}\ndef \"B\" (\n  references = @missing.usda@\n) {}\n";
   CHECK(composeError(layers, "root.usda") ==
-        "root.usda:4:1: reference @missing.usda@ (missing.usda): missing.usda: no such layer");
+        "root.usda:5:16: reference @missing.usda@ (missing.usda): no such layer");
 
   layers.texts["asset.usda"] = "#usda 1.0\ndef \"Asset\" {}\n";
   layers.texts["nodefault.usda"] = "#usda 1.0\ndef \"B\" (payload = @asset.usda@) {}\n";
   CHECK(composeError(layers, "nodefault.usda") ==
-        "nodefault.usda:2:1: payload @asset.usda@: asset.usda has no defaultPrim; name the prim to load "
+        "nodefault.usda:2:20: payload @asset.usda@: asset.usda has no defaultPrim; name the prim to load "
         "(@asset.usda@</Prim>)");
 
   layers.texts["noprim.usda"] = "#usda 1.0\ndef \"B\" (references = @asset.usda@</Nope>) {}\n";
   CHECK(composeError(layers, "noprim.usda") ==
-        "noprim.usda:2:1: reference @asset.usda@</Nope>: no prim </Nope> in asset.usda");
+        "noprim.usda:2:23: reference @asset.usda@</Nope>: no prim </Nope> in asset.usda");
 
   layers.texts["internal.usda"] = "#usda 1.0\ndef \"B\" (references = </Nope>) {}\n";
-  CHECK(composeError(layers, "internal.usda") == "internal.usda:2:1: reference </Nope>: no prim </Nope> in internal.usda");
+  CHECK(composeError(layers, "internal.usda") == "internal.usda:2:23: reference </Nope>: no prim </Nope> in internal.usda");
 
   layers.texts["badsub.usda"] = "#usda 1.0\n(\n subLayers = [@gone.usda@]\n)\n";
-  CHECK(composeError(layers, "badsub.usda") == "badsub.usda:1:1: sublayer @gone.usda@ (gone.usda): gone.usda: no such layer");
+  CHECK(composeError(layers, "badsub.usda") == "badsub.usda:3:15: sublayer @gone.usda@ (gone.usda): no such layer");
 
   layers.texts["syntax.usda"] = "#usda 1.0\ndef \"A\" {\n  double x = \n}\n";
   layers.texts["refsyntax.usda"] = "#usda 1.0\ndef \"A\" (references = @syntax.usda@</A>) {}\n";
   CHECK(composeError(layers, "refsyntax.usda") ==
-        "refsyntax.usda:2:1: reference @syntax.usda@</A> (syntax.usda): syntax.usda:4:1: expected a double number, found '}'");
+        "refsyntax.usda:2:23: reference @syntax.usda@</A> (syntax.usda): syntax.usda:4:1: expected a double number, found '}'");
 
-  CHECK(composeError(layers, "nothing.usda") == "the root layer (nothing.usda): nothing.usda: no such layer");
+  CHECK(composeError(layers, "nothing.usda") == "the root layer (nothing.usda): no such layer");
 }
 
 TEST_CASE("compose errors: wide and deep hostile compositions are bounded", "[compose]") {
@@ -113,6 +113,6 @@ TEST_CASE("compose errors: a missing file on disk names the referencing location
   }
   std::filesystem::remove_all(dir);
   std::string missing = (dir / "missing.usda").string();
-  CHECK(error == root + ":2:1: reference @./missing.usda@ (" + missing + "): " + missing +
-                     ": cannot open the layer: No such file or directory");
+  CHECK(error == root + ":3:18: reference @./missing.usda@ (" + missing +
+                     "): cannot open the layer: No such file or directory");
 }

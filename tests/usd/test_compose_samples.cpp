@@ -138,7 +138,7 @@ TEST_CASE("compose samples: MaterialX references are not USD layers and are skip
   ComposedStage stage = composeSample("test_assets/MaterialXTest/basic.usda");
   CHECK(stage.prims.size() == 2);
   REQUIRE(stage.warnings.size() == 1);
-  CHECK_THAT(stage.warnings[0].message, Catch::Contains("basic.usda:8:1: reference @./usd_preview_surface_plastic.mtlx@</MaterialX>: not a USD layer"));
+  CHECK_THAT(stage.warnings[0].message, Catch::Contains("basic.usda:9:18: reference @./usd_preview_surface_plastic.mtlx@</MaterialX>: not a USD layer"));
   ComposedStage coords = composeSample("test_assets/TextureCoordinateTest/TextureCoordinateTest.usda");
   CHECK(coords.prims.size() == 39);
   CHECK(coords.warnings.empty());

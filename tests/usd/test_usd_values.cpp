@@ -72,8 +72,8 @@ TEST_CASE("usd values: list ops apply as Sdf's ApplyOperations", "[usda]") {
   ints.appendedItems = {3, 1};
   CHECK(ints.applyTo({1, 2}) == std::vector<int64_t>{2, 3, 1});
   ListOp<Reference> refs;
-  refs.deletedItems = {Reference{"a.usda", "/A", {}, nullptr}};
-  CHECK(refs.applyTo({Reference{"a.usda", "/A", {}, nullptr}, Reference{"b.usda", "", {}, nullptr}}).size() == 1);
+  refs.deletedItems = {Reference{"a.usda", "/A", {}, nullptr, {}}};
+  CHECK(refs.applyTo({Reference{"a.usda", "/A", {}, nullptr, {}}, Reference{"b.usda", "", {}, nullptr, {}}}).size() == 1);
   // 200,000 items apply in linear time (quadratic would take minutes).
   ListOp<std::string> big;
   for (int i = 0; i < 200000; ++i) big.prependedItems.push_back(std::to_string(i));
