@@ -96,7 +96,8 @@ def log_records(stderr):
 
 
 def located(record):
-    return bool(record.get("file")) and int(record.get("line") or 0) > 0
+    """Names a file: with a line in a text layer; a crate layer (binary) has no lines, so line 0 there."""
+    return bool(record.get("file"))
 
 
 def record_text(record):
