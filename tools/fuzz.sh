@@ -8,9 +8,10 @@ set -euo pipefail
 seconds=${FUZZ_SECONDS:-60}
 build=build/fuzz
 cmake --preset fuzz >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header \
+  fuzz_usd_mesh
 mkdir -p "$build/corpus/scene" "$build/corpus/set" "$build/corpus/usda" "$build/corpus/crate" "$build/corpus/usdz" \
-  "$build/corpus/image" "$build/artifacts"
+  "$build/corpus/image" "$build/corpus/mesh" "$build/artifacts"
 # usda seeds: the USD sample files beside the repository, when present.
 if [[ -d ../shared/usd-samples ]]; then
   find ../shared/usd-samples -name '*.usd*' -size -300k -exec grep -l '^#usda' {} + | while read -r f; do
@@ -46,7 +47,7 @@ fi
 # limit a test of each input rather than of the run's history.
 export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}allocator_release_to_os_interval_ms=100:quarantine_size_mb=32
 status=0
-for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header; do
+for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz fuzz_image_header fuzz_usd_mesh; do
   corpus=$build/corpus/scene
   [[ $harness == fuzz_overrides ]] && corpus=$build/corpus/set
   [[ $harness == fuzz_usda ]] && corpus=$build/corpus/usda
@@ -54,6 +55,8 @@ for harness in fuzz_scene_loader fuzz_overrides fuzz_usda fuzz_crate fuzz_usdz f
   [[ $harness == fuzz_crate ]] && corpus=$build/corpus/crate max_len=300000
   [[ $harness == fuzz_usdz ]] && corpus=$build/corpus/usdz max_len=300000
   [[ $harness == fuzz_image_header ]] && corpus=$build/corpus/image max_len=200000
+  # The mesh harness builds its usda from the bytes: it starts from nothing.
+  [[ $harness == fuzz_usd_mesh ]] && corpus=$build/corpus/mesh max_len=4096
   echo "fuzz: $harness for ${seconds}s"
   log=$build/artifacts/$harness.log
   if "$build/tests/fuzz/$harness" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len=$max_len \

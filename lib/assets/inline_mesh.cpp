@@ -1,5 +1,6 @@
 #include "assets/inline_mesh.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "core/diagnostics.h"
@@ -55,27 +56,40 @@ std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim) {
   return mesh;
 }
 
-std::string inlineMeshProblem(const InlineMesh& mesh) {
+std::string inlineMeshProblem(const InlineMesh& mesh, std::string* attribute) {
+  auto at = [attribute](const char* name, std::string problem) {
+    if (attribute) *attribute = name;
+    return problem;
+  };
   const size_t points = itemsOf(mesh.points);
   const auto counts = mesh.faceVertexCounts.get<IntArray>().items();
   const auto indices = mesh.faceVertexIndices.get<IntArray>().items();
   size_t total = 0;
-  for (int32_t c : counts) {
-    if (c < 0) return "faceVertexCounts has a negative count " + std::to_string(c);
-    total += size_t(c);
+  for (size_t f = 0; f < counts.size(); ++f) {
+    if (counts[f] < 3)
+      return at("faceVertexCounts", "faceVertexCounts: expected each face to have at least 3 vertices, found " +
+                                        std::to_string(counts[f]) + " for face " + std::to_string(f));
+    total += size_t(counts[f]);
   }
   if (total != indices.size())
-    return "faceVertexCounts add up to " + std::to_string(total) + " but faceVertexIndices has " +
-           std::to_string(indices.size()) + " items";
+    return at("faceVertexIndices", "faceVertexCounts add up to " + std::to_string(total) +
+                                       " but faceVertexIndices has " + std::to_string(indices.size()) + " items");
   for (size_t i = 0; i < indices.size(); ++i)
     if (indices[i] < 0 || size_t(indices[i]) >= points)
-      return "faceVertexIndices[" + std::to_string(i) + "] is " + std::to_string(indices[i]) + ", outside the " +
-             std::to_string(points) + " points";
+      return at("faceVertexIndices", "faceVertexIndices[" + std::to_string(i) + "] is " +
+                                         std::to_string(indices[i]) + ", outside the " + std::to_string(points) +
+                                         " points");
+  const FloatArray& p = mesh.points.get<FloatArray>();
+  for (size_t i = 0; i < p.size(); ++i)
+    if (!std::isfinite(p[i]))
+      return at("points", "points[" + std::to_string(i / 3) + "] is not finite (found " + std::to_string(p[i]) + ")");
   if (mesh.normals) {
-    if (std::string p = primvarProblem("normals", *mesh.normals, points, indices.size()); !p.empty()) return p;
+    if (std::string problem = primvarProblem("normals", *mesh.normals, points, indices.size()); !problem.empty())
+      return at("normals", problem);
   }
   if (mesh.st) {
-    if (std::string p = primvarProblem("primvars:st", *mesh.st, points, indices.size()); !p.empty()) return p;
+    if (std::string problem = primvarProblem("primvars:st", *mesh.st, points, indices.size()); !problem.empty())
+      return at("primvars:st", problem);
   }
   return "";
 }

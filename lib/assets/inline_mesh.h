@@ -24,10 +24,12 @@ struct InlineMesh {
 // The inline geometry of a Mesh prim; null when it has no authored points.
 std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim);
 
-// What is wrong with the arrays ("" when nothing): counts that do not add
-// up to the indices, indices outside the points, primvars of a length that
-// is neither per point nor per face-vertex.
-std::string inlineMeshProblem(const InlineMesh& mesh);
+// What is wrong with the arrays ("" when nothing): a face of fewer than 3
+// corners, counts that do not add up to the indices, indices outside the
+// points, a point that is not finite, primvars of a length that is neither
+// per point nor per face-vertex. `attribute` (when given) receives the name
+// of the attribute at fault, to locate the message.
+std::string inlineMeshProblem(const InlineMesh& mesh, std::string* attribute = nullptr);
 
 // Fan-triangulates the faces (RunError naming `primPath` on a problem).
 MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPath);

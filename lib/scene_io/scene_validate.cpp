@@ -27,8 +27,9 @@ void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& c
   if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
   if (prim.type() == PrimType::Mesh && prim.getString("asset").empty()) {
     if (auto mesh = inlineMeshOf(prim)) {
-      if (std::string problem = inlineMeshProblem(*mesh); !problem.empty())
-        diag.error(prim.loc(), prim.path() + ": " + problem);
+      std::string attribute;
+      if (std::string problem = inlineMeshProblem(*mesh, &attribute); !problem.empty())
+        diag.error(attributeLoc(prim, attribute), prim.path() + ": " + problem);
     } else {
       diag.error(prim.loc(), prim.path() + ": a Mesh needs `asset:` (the path of its mesh file) or inline `points:`");
     }

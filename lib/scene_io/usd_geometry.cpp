@@ -6,6 +6,7 @@
 
 #include "core/text.h"
 #include "scene_io/usd_import_internal.h"
+#include "scene_io/usd_mesh_topology.h"
 
 namespace sdg::usd_map {
 namespace {
@@ -98,6 +99,8 @@ std::vector<int32_t> ints(const usd::ComposedProperty* p) {
 
 void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<int32_t>* subsetFaces,
                         Diagnostics& diag) {
+  // Counts, indices, points and primvar sizes checked before anything below indexes with them.
+  if (!checkMeshTopology(mesh, diag)) return;
   const usd::ComposedProperty* points = mesh.property("points");
   std::optional<Value> pointsValue = points ? toStageValue(points->value, ValueType::Point3fArray) : std::nullopt;
   if (!pointsValue) {

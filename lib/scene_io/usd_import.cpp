@@ -15,6 +15,7 @@
 #include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
 #include "scene_io/usd_mesh_asset.h"
+#include "scene_io/usd_mesh_topology.h"
 #include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_settings.h"
 #include "scene_io/usd_value_node.h"
@@ -260,44 +261,39 @@ class Importer {
   void importMesh(const ComposedPrim& prim, Prim& p) {
     std::vector<int32_t> rest;
     std::vector<std::pair<const ComposedPrim*, std::vector<int32_t>>> subsets;
+    const ComposedProperty* counts = prim.property("faceVertexCounts");
+    const size_t faceCount = counts ? counts->value.numbers.size() : 0;
     for (const std::string& child : prim.children) {
       const ComposedPrim* c = composed_.prim(prim.path + "/" + child);
       if (!c || c->typeName != "GeomSubset" || !c->active) continue;
       const ComposedProperty* binding = c->property("material:binding");
       if (!binding || binding->targets.empty()) continue;
-      const ComposedProperty* indices = c->property("indices");
       const ComposedProperty* elementType = c->property("elementType");
       if (elementType && !elementType->value.empty() && elementType->value.strings[0] != "face") {
         report_.losses.note(UsdLossKind::Binding, "a material bound to a GeomSubset of " + elementType->value.strings[0] + "s",
                             c->loc, c->path);
+
+      if (elementType && !elementType->value.empty() &&
+          (elementType->value.strings.empty() || elementType->value.strings[0] != "face")) {  // not text: not "face"
         warnOnce(c->loc, "subset:" + c->path, c->path + ": only face subsets bind materials; ignored");
         continue;
       }
-      std::vector<int32_t> faces;
-      if (indices)
-        for (double d : indices->value.numbers) faces.push_back(int32_t(d));
-      subsets.emplace_back(c, std::move(faces));
+      std::optional<std::vector<int32_t>> faces = usd_map::subsetFaces(*c, prim.path, faceCount, diag_);
+      if (!faces) return;
+      subsets.emplace_back(c, std::move(*faces));
     }
     if (subsets.empty()) {
       usd_map::importMeshGeometry(prim, p, nullptr, diag_);
       return;
     }
-    const ComposedProperty* counts = prim.property("faceVertexCounts");
-    const size_t faceCount = counts ? counts->value.numbers.size() : 0;
     std::vector<bool> taken(faceCount, false);
-    for (const auto& [subset, faces] : subsets) {
-      for (int32_t f : faces) {
-        if (f < 0 || size_t(f) >= faceCount) {
-          diag_.error(subset->loc, subset->path + ".indices: face " + std::to_string(f) + " is outside the " +
-                                       std::to_string(faceCount) + " faces of " + prim.path);
-          return;
-        }
-        taken[size_t(f)] = true;
-      }
-    }
+    for (const auto& [subset, faces] : subsets)
+      for (int32_t f : faces) taken[size_t(f)] = true;
     for (size_t f = 0; f < faceCount; ++f)
       if (!taken[f]) rest.push_back(int32_t(f));
+    const size_t errorsBefore = diag_.errorCount();
     usd_map::importMeshGeometry(prim, p, &rest, diag_);
+    if (diag_.errorCount() > errorsBefore) return;  // the mesh's problems said once, not again for each subset
     for (const auto& [subset, faces] : subsets) {
       Prim& s = stage_.definePrim(mapPath(subset->path), PrimType::Mesh);
       s.loc() = subset->loc;

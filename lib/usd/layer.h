@@ -123,6 +123,11 @@ struct ReadLimits {
   uint64_t maxDecompressedBytes = uint64_t(8) << 30;
   uint32_t maxNesting = 256;                        // prim/dictionary/paren nesting
   uint64_t maxSpecs = uint64_t(1) << 26;
+  // A compressed .usdz entry inflates to at most this (a stored entry is
+  // bounded by the package's own size); refused before anything is
+  // allocated when its header says more, and while inflating when it lies.
+  // Entries inflated on the way to another (a nested package) share it.
+  uint64_t maxInflatedEntryBytes = uint64_t(256) << 20;  // 256 MiB
 };
 
 // Errors of the USD module: a message that names the file and the line:col

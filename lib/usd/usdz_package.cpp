@@ -3,6 +3,7 @@
 #include <zip.h>
 
 #include <algorithm>
+#include <filesystem>
 
 namespace sdg::usd {
 
@@ -65,11 +66,14 @@ UsdzPackage::UsdzPackage(const std::string& path, const ReadLimits& limits) : id
     zip_error_fini(&ze);
     packageError(path, "cannot open it as a zip archive: " + message);
   }
+  std::error_code ec;
+  archiveBytes_ = std::filesystem::file_size(path, ec);
+  if (ec) archiveBytes_ = 0;
   open(archive);
 }
 
 UsdzPackage::UsdzPackage(std::vector<uint8_t> bytes, std::string identifier, const ReadLimits& limits)
-    : identifier_(std::move(identifier)), limits_(limits), bytes_(std::move(bytes)) {
+    : identifier_(std::move(identifier)), limits_(limits), bytes_(std::move(bytes)), archiveBytes_(bytes_.size()) {
   zip_error_t ze;
   zip_error_init(&ze);
   zip_source_t* source = zip_source_buffer_create(bytes_.data(), bytes_.size(), 0, &ze);
@@ -110,17 +114,26 @@ std::string UsdzPackage::firstLayer() const {
   return "";
 }
 
+std::unique_ptr<UsdzPackage> UsdzPackage::nested(const std::string& entry) const {
+  if (limits_.maxNesting == 0) packageError(identifier_, "packages nest deeper than the limit");
+  bool inflated = false;
+  std::vector<uint8_t> bytes = readOwnEntry(entry, &inflated);
+  ReadLimits nestedLimits = limits_;
+  --nestedLimits.maxNesting;
+  // The package's bytes stay in memory while its entries are read: a chain
+  // of packages, each inflating to the limit, must not hold the limit at
+  // every level.
+  if (inflated) nestedLimits.maxInflatedEntryBytes -= std::min<uint64_t>(bytes.size(), limits_.maxInflatedEntryBytes);
+  return std::make_unique<UsdzPackage>(std::move(bytes), identifier_ + "[" + entry + "]", nestedLimits);
+}
+
 std::vector<uint8_t> UsdzPackage::read(const std::string& entry) const {
   auto [outer, inner] = splitNested(entry);
   if (inner.empty()) return readOwnEntry(entry);
-  if (limits_.maxNesting == 0) packageError(identifier_, "packages nest deeper than the limit");
-  ReadLimits nestedLimits = limits_;
-  --nestedLimits.maxNesting;
-  UsdzPackage nested(readOwnEntry(outer), identifier_ + "[" + outer + "]", nestedLimits);
-  return nested.read(inner);
+  return nested(outer)->read(inner);
 }
 
-std::vector<uint8_t> UsdzPackage::readOwnEntry(const std::string& entry) const {
+std::vector<uint8_t> UsdzPackage::readOwnEntry(const std::string& entry, bool* inflated) const {
   const std::string where = "entry '" + entry + "'";
   zip_int64_t index = zip_name_locate(archive_, entry.c_str(), ZIP_FL_ENC_GUESS);
   if (index < 0 || !contains(entry)) packageError(identifier_, where + " does not exist");
@@ -133,22 +146,46 @@ std::vector<uint8_t> UsdzPackage::readOwnEntry(const std::string& entry) const {
   if (st.size > limits_.maxFileBytes)
     packageError(identifier_, where + " has " + std::to_string(st.size) + " bytes, more than the limit of " +
                                   std::to_string(limits_.maxFileBytes));
-  if ((st.valid & ZIP_STAT_COMP_METHOD) && st.comp_method != ZIP_CM_STORE &&
-      !zip_compression_method_supported(st.comp_method, 0))
+  const bool stored = !(st.valid & ZIP_STAT_COMP_METHOD) || st.comp_method == ZIP_CM_STORE;
+  if (!stored && !zip_compression_method_supported(st.comp_method, 0))
     packageError(identifier_, where + " is compressed with method " + std::to_string(st.comp_method) +
                                   ", which libzip cannot decompress (usdz entries are stored uncompressed)");
+  // The sizes the header records, checked before anything is allocated: a
+  // stored entry is its own bytes in the package, a compressed one inflates
+  // to at most the limit (a 1 MB package must not claim a 1 GiB entry).
+  if (stored && archiveBytes_ != 0 && st.size > archiveBytes_)
+    packageError(identifier_, where + " records " + std::to_string(st.size) + " stored bytes, but the package has " +
+                                  std::to_string(archiveBytes_));
+  if (!stored && st.size > limits_.maxInflatedEntryBytes)
+    packageError(identifier_, where + " inflates to " + std::to_string(st.size) +
+                                  " bytes, more than the limit of " + std::to_string(limits_.maxInflatedEntryBytes) +
+                                  " for a compressed entry (ReadLimits::maxInflatedEntryBytes)");
+  if (inflated) *inflated = !stored;
   zip_file_t* file = zip_fopen_index(archive_, zip_uint64_t(index), 0);
   if (!file) packageError(identifier_, where + ": cannot open it: " + zip_strerror(archive_));
-  std::vector<uint8_t> bytes(st.size);
-  zip_int64_t n = zip_fread(file, bytes.data(), bytes.size());
-  // One byte more than recorded must not come: an entry that inflates past
-  // its recorded size is corrupt. Reading to the end also checks the CRC.
-  uint8_t extra = 0;
-  zip_int64_t more = n == zip_int64_t(bytes.size()) ? zip_fread(file, &extra, 1) : 0;
+  // The recorded size is not trusted: read in chunks, the buffer grown only
+  // as data arrives and never past the recorded size, and stop at the first
+  // byte beyond it. Reading to the end also checks the CRC.
+  constexpr size_t kChunk = size_t(1) << 20;
+  std::vector<uint8_t> bytes;
+  std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kChunk, st.size + 1)));
+  bool overrun = false;
+  zip_int64_t n = 0;
+  while ((n = zip_fread(file, chunk.data(), chunk.size())) > 0) {
+    if (bytes.size() + uint64_t(n) > st.size) {
+      overrun = true;
+      break;
+    }
+    if (bytes.capacity() < bytes.size() + size_t(n))
+      bytes.reserve(size_t(std::min<uint64_t>(st.size, std::max(bytes.capacity() * 2, bytes.size() + size_t(n)))));
+    bytes.insert(bytes.end(), chunk.begin(), chunk.begin() + n);
+  }
   std::string fileError = zip_file_strerror(file);
   zip_fclose(file);
-  if (n < 0 || more < 0) packageError(identifier_, where + ": cannot read it: " + fileError);
-  if (n != zip_int64_t(bytes.size()) || more != 0)
+  if (overrun)
+    packageError(identifier_, where + " inflates past the " + std::to_string(st.size) + " bytes its header records");
+  if (n < 0) packageError(identifier_, where + ": cannot read it: " + fileError);
+  if (bytes.size() != st.size)
     packageError(identifier_, where + " does not hold the " + std::to_string(st.size) + " bytes its header records");
   return bytes;
 }

@@ -3,8 +3,9 @@
 // layer; the other entries (layers, textures, nested packages) are found by
 // asset paths relative to the entry that names them. Read through Debian's
 // libzip. USD writes entries stored (uncompressed); entries compressed with a
-// method libzip supports (deflate) are read too, since libzip inflates them
-// at no cost to us; encrypted entries are an error.
+// method libzip supports (deflate) are read too, inflated against
+// ReadLimits::maxInflatedEntryBytes (a zip bomb is refused, not held in
+// memory); encrypted entries are an error.
 //
 // Entry names inside a nested package are written "outer.usdz[inner.usdc]"
 // (as USD's package-relative paths do), to any depth up to
@@ -41,8 +42,12 @@ class UsdzPackage {
 
   // The bytes of `entry`; "a.usdz[b.usdc]" reads b.usdc inside the nested
   // package a.usdz. Throws UsdError naming the package and entry for a
-  // missing entry, an encrypted one, one larger than limits.maxFileBytes or
-  // data that does not decompress to its recorded size and checksum.
+  // missing entry, an encrypted one, one larger than limits.maxFileBytes, a
+  // stored one larger than the package, a compressed one that inflates past
+  // limits.maxInflatedEntryBytes, or data that does not decompress to its
+  // recorded size and checksum. Memory stays within the recorded size (so
+  // within the limit): the data is read in chunks and refused as soon as it
+  // passes the size its header records.
   std::vector<uint8_t> read(const std::string& entry) const;
 
   // The entry that `assetPath`, written in the layer `fromEntry`, names:
@@ -52,11 +57,17 @@ class UsdzPackage {
 
  private:
   void open(zip* archive);
-  std::vector<uint8_t> readOwnEntry(const std::string& entry) const;
+  // `inflated` (when given) is set to whether the entry was compressed.
+  std::vector<uint8_t> readOwnEntry(const std::string& entry, bool* inflated = nullptr) const;
 
   std::string identifier_;
   ReadLimits limits_;
+  // A nested package read from `entry` of this one: its compressed entries
+  // share the inflation limit with the bytes inflated to reach it.
+  std::unique_ptr<UsdzPackage> nested(const std::string& entry) const;
+
   std::vector<uint8_t> bytes_;  // the package's bytes when opened from memory
+  uint64_t archiveBytes_ = 0;   // the package's size: a stored entry cannot be larger
   zip* archive_ = nullptr;
   std::vector<std::string> entries_;
 };
