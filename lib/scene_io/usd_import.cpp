@@ -16,7 +16,6 @@
 #include "scene_io/usd_import_internal.h"
 #include "scene_io/usd_mesh_asset.h"
 #include "scene_io/usd_mesh_topology.h"
-
 #include "scene_io/usd_point_instancer.h"
 #include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_settings.h"
@@ -122,6 +121,7 @@ class Importer {
         report_.losses.note(UsdLossKind::AppliedSchema, schema, prim.loc, prim.path);
     for (const char* clips : {"clips", "clipSets"})
       if (prim.metadata.count(clips)) report_.losses.note(UsdLossKind::Composition, "value clips", prim.loc, prim.path);
+  }
 
   // PointInstancers (usd_point_instancer.h) once every prototype is on the stage.
   void expandInstancers() {
@@ -138,7 +138,6 @@ class Importer {
     if (handledElsewhere(prim.typeName)) return;
     std::optional<PrimType> type = stageTypeFor(prim.typeName);
     const bool knownType = type.has_value();
-
     if (isPointInstancer(prim)) {
       type = PrimType::Xform;  // its instances are added under it afterwards
       instancers_.push_back(&prim);
@@ -285,12 +284,11 @@ class Importer {
       const ComposedProperty* binding = c->property("material:binding");
       if (!binding || binding->targets.empty()) continue;
       const ComposedProperty* elementType = c->property("elementType");
-      if (elementType && !elementType->value.empty() && elementType->value.strings[0] != "face") {
-        report_.losses.note(UsdLossKind::Binding, "a material bound to a GeomSubset of " + elementType->value.strings[0] + "s",
-                            c->loc, c->path);
-
       if (elementType && !elementType->value.empty() &&
           (elementType->value.strings.empty() || elementType->value.strings[0] != "face")) {  // not text: not "face"
+        const std::string what = elementType->value.strings.empty() ? "a GeomSubset whose elementType is not text"
+                                                                     : "a GeomSubset of " + elementType->value.strings[0] + "s";
+        report_.losses.note(UsdLossKind::Binding, "a material bound to " + what, c->loc, c->path);
         warnOnce(c->loc, "subset:" + c->path, c->path + ": only face subsets bind materials; ignored");
         continue;
       }
