@@ -32,6 +32,7 @@ set(SDG_PLUGIN_HEADERS
   behavior/rng.h
   builtin_behaviors/templates/base_behavior.h
   core/diagnostics.h
+  core/dropped.h
   core/log.h
   core/payload.h
   core/source_loc.h
