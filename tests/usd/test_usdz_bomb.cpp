@@ -176,7 +176,7 @@ TEST_CASE("usdz bomb: an entry that inflates to 1 GiB is refused before it is in
   CHECK(peakMiB() - before < 64);
 }
 
-TEST_CASE("usdz bomb: within the limit an entry reads; past it, honest or lying, it is refused", "[usd][usdz][hostile]") {
+TEST_CASE("usdz bomb: within the limit an entry reads, past it, honest or lying, it is refused", "[usd][usdz][hostile]") {
   const std::vector<uint8_t> stream = deflatedZeros(4);
   const uint32_t crc = crcOfZeros(4);
   const fs::path path = writeBytes("four.usdz", zipOf({{"zeros.bin", stream, 8, crc, uint32_t(4 * kMiB)}}));
