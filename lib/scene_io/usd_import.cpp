@@ -162,6 +162,7 @@ class Importer {
     for (const ComposedProperty& prop : prim.properties) {
       if (prop.isRelationship || prop.value.empty()) continue;
       if (std::find(fallbacks.begin(), fallbacks.end(), prop.name) != fallbacks.end()) continue;
+      if (usd_map::importDisplayPrimvar(prim, prop, type, p, diag_)) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
