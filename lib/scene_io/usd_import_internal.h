@@ -33,4 +33,9 @@ double unitsScale(const usd::LayerUnits& from, const usd::LayerUnits& to);
 void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<int32_t>* faces,
                         Diagnostics& diag);
 
+// Its subdivision arrays (usd_subdivision.cpp): creases, corners, and
+// holeIndices renumbered to the kept `faces` (authored face indices).
+void importSubdivisionTags(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<size_t>& faces,
+                           Diagnostics& diag);
+
 }  // namespace sdg::usd_map
