@@ -44,10 +44,16 @@ std::string errors(const Diagnostics& diag) {
   return out;
 }
 
+// In Z-up metres, the stage's units, so that world positions are the
+// hand-computed ones (USD's fallbacks, Y-up centimetres, add a correction).
 // One instancer, translated by (10, 0, 0), one Cube prototype whose root is
 // itself translated by (0, 0, 1).
 std::string oneInstancer(const std::string& arrays, const std::string& metadata = "") {
   return R"(#usda 1.0
+(
+    metersPerUnit = 1
+    upAxis = "Z"
+)
 def Xform "W"
 {
     def PointInstancer "P" ()" + metadata + R"()
@@ -137,7 +143,7 @@ TEST_CASE("point instancer: quatf orientationsf win over quath orientations", "[
   CHECK(near(world(unnormalised.stage, "/W/P/instance_0", Vec3d(1, 0, 0)), Vec3d(11, 0, 1)));
 }
 
-TEST_CASE("point instancer: ids name the instances; invisibleIds hide, inactiveIds drop", "[scene_io][usd][instancer]") {
+TEST_CASE("point instancer: ids name the instances, invisibleIds hide, inactiveIds drop", "[scene_io][usd][instancer]") {
   Imported in;
   import(oneInstancer(R"(
         int[] protoIndices = [0, 0, 0, 0]
@@ -176,6 +182,10 @@ TEST_CASE("point instancer: prototypes beneath are drawn only as instances, shar
           "[scene_io][usd][instancer]") {
   Imported in;
   import(R"(#usda 1.0
+(
+    metersPerUnit = 1
+    upAxis = "Z"
+)
 def Xform "W"
 {
     def PointInstancer "P"
@@ -243,6 +253,10 @@ def Xform "W"
 TEST_CASE("point instancer: an instancer inside a prototype is expanded in every copy", "[scene_io][usd][instancer]") {
   Imported in;
   import(R"(#usda 1.0
+(
+    metersPerUnit = 1
+    upAxis = "Z"
+)
 def PointInstancer "Outer"
 {
     rel prototypes = [</Outer/Protos/Pair>]
@@ -290,7 +304,7 @@ TEST_CASE("point instancer: mismatched arrays, indices and quaternions are locat
         int[] protoIndices = [0, 0]
         point3f[] positions = [(0, 0, 0)]
 )");
-  CHECK(e.find("/v/scene.usda:11:") == 0);
+  CHECK(e.find("/v/scene.usda:15:") == 0);
   CHECK(e.find("/W/P.positions: 1 items, but protoIndices has 2") != std::string::npos);
   e = firstError(R"(
         int[] protoIndices = [0, 1]
