@@ -16,6 +16,7 @@
 #include "scene_io/usd_import_internal.h"
 #include "scene_io/usd_mesh_asset.h"
 #include "scene_io/usd_mesh_topology.h"
+#include "scene_io/usd_point_instancer.h"
 #include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_settings.h"
 #include "scene_io/usd_value_node.h"
@@ -82,6 +83,7 @@ class Importer {
     if (sourceRoot == "/") {
       for (const std::string& path : composed_.rootPrims())
         if (const ComposedPrim* prim = composed_.prim(path)) importPrim(*prim, stage_.pseudoRoot(), rootUnits, scale);
+      expandInstancers();
       return;
     }
     const ComposedPrim* prim = composed_.prim(sourceRoot);
@@ -94,6 +96,7 @@ class Importer {
     Prim* parent = stage_.find(std::string(path::parent(mountPath)));
     mountUnits_ = rootUnits;
     importPrim(*prim, *parent, {}, scale);
+    expandInstancers();
   }
 
   std::string mapPath(const std::string& source) const {
@@ -120,6 +123,13 @@ class Importer {
       if (prim.metadata.count(clips)) report_.losses.note(UsdLossKind::Composition, "value clips", prim.loc, prim.path);
   }
 
+  // PointInstancers (usd_point_instancer.h) once every prototype is on the stage.
+  void expandInstancers() {
+    expandPointInstancers(
+        instancers_, stage_, [this](const std::string& s) { return mapPath(s); },
+        [this](const SourceLoc& loc, const std::string& key, const std::string& m) { warnOnce(loc, key, m); }, diag_);
+  }
+
   // `outerUnits` go before the prim's own ops (the root layer's units into
   // the stage's); a units change on the prim goes after them, as Omniverse
   // appends its unitsResolve ops.
@@ -128,6 +138,10 @@ class Importer {
     if (handledElsewhere(prim.typeName)) return;
     std::optional<PrimType> type = stageTypeFor(prim.typeName);
     const bool knownType = type.has_value();
+    if (isPointInstancer(prim)) {
+      type = PrimType::Xform;  // its instances are added under it afterwards
+      instancers_.push_back(&prim);
+    }
     if (!type) {
       report_.losses.note(UsdLossKind::PrimType, prim.typeName, prim.loc, prim.path);
       warnOnce(prim.loc, "type:" + prim.typeName,
@@ -181,6 +195,7 @@ class Importer {
       if (prop.isRelationship || prop.value.empty()) continue;
       if (std::find(fallbacks.begin(), fallbacks.end(), prop.name) != fallbacks.end()) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
+      if (isPointInstancer(prim) && isPointInstancerAttribute(prop.name)) continue;
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
         if (!spec && !quietlyIgnored(prop.name)) {
@@ -314,6 +329,7 @@ class Importer {
   Diagnostics& diag_;
   std::string sourceRoot_, mountPath_;
   std::vector<XformOp> mountUnits_;  // the file's units into the stage's, on a mounted root
+  std::vector<const ComposedPrim*> instancers_;  // PointInstancers, in import order
   std::set<std::string> warned_;
 };
 
