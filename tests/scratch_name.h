@@ -21,4 +21,23 @@ inline std::filesystem::path uniqueTempPath(const std::string& stem) {
   return std::filesystem::temp_directory_path() / (stem + uniqueSuffix());
 }
 
+// A folder of this process's own, made now and removed with everything in
+// it when the object goes (a function-local static: at exit).
+class ScratchFolder {
+ public:
+  explicit ScratchFolder(const std::string& stem) : path_(uniqueTempPath(stem)) {
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 }  // namespace sdg::test

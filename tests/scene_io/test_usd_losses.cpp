@@ -9,12 +9,10 @@ namespace sdg {
 namespace {
 
 UsdImportReport importText(const std::string& text) {
-  Stage stage;
-  UsdImportReport report;
-  Diagnostics diag;
-  importUsdPrims(test::composeText(text), "/", stage, "/", test::builtinCatalog(), UsdImportOptions{}, report, diag);
-  REQUIRE_FALSE(diag.hasErrors());
-  return report;
+  test::ImportedStage in;
+  test::importText(text, in);
+  REQUIRE_FALSE(in.diag.hasErrors());
+  return std::move(in.report);
 }
 
 const DroppedWarning* findDropped(const std::vector<DroppedWarning>& all, const std::string& kind,

@@ -13,22 +13,12 @@
 #include "writers/semantics.h"
 
 using namespace sdg;
-using sdg::test::builtinCatalog;
 using sdg::test::composeText;
 
 namespace {
 
-struct Imported {
-  Stage stage;
-  Diagnostics diag;
-  UsdImportReport report;
-};
-
-void import(const std::string& text, Imported& out) {
-  UsdImportOptions options;
-  options.runDefaults = false;
-  importUsdPrims(composeText(text), "/", out.stage, "/", builtinCatalog(), options, out.report, out.diag);
-}
+using Imported = test::ImportedStage;
+using test::importText;
 
 Vec3d world(const Stage& stage, const std::string& path, const Vec3d& local) {
   const Prim* prim = stage.find(path);
@@ -97,7 +87,7 @@ TEST_CASE("point instancer: quath orientations, scales, the prototype root's and
           "[scene_io][usd][instancer]") {
   Imported in;
   // 90 degrees about X as (real, i, j, k); scale 2.
-  import(oneInstancer(R"(
+  importText(oneInstancer(R"(
         int[] protoIndices = [0, 0]
         point3f[] positions = [(1, 0, 0), (0, 5, 0)]
         quath[] orientations = [(0.7071068, 0.7071068, 0, 0), (1, 0, 0, 0)]
@@ -121,7 +111,7 @@ TEST_CASE("point instancer: quath orientations, scales, the prototype root's and
 
 TEST_CASE("point instancer: quatf orientationsf win over quath orientations", "[scene_io][usd][instancer]") {
   Imported in;
-  import(oneInstancer(R"(
+  importText(oneInstancer(R"(
         int[] protoIndices = [0]
         point3f[] positions = [(0, 0, 0)]
         quath[] orientations = [(1, 0, 0, 0)]
@@ -134,7 +124,7 @@ TEST_CASE("point instancer: quatf orientationsf win over quath orientations", "[
   CHECK(near(world(in.stage, "/W/P/instance_0", Vec3d(1, 0, 0)), Vec3d(9, 0, 1), 1e-6));
   // Unnormalised quaternions are normalised: (2, 0, 0, 0) is no rotation.
   Imported unnormalised;
-  import(oneInstancer(R"(
+  importText(oneInstancer(R"(
         int[] protoIndices = [0]
         point3f[] positions = [(0, 0, 0)]
         quatf[] orientationsf = [(2, 0, 0, 0)]
@@ -145,7 +135,7 @@ TEST_CASE("point instancer: quatf orientationsf win over quath orientations", "[
 
 TEST_CASE("point instancer: ids name the instances, invisibleIds hide, inactiveIds drop", "[scene_io][usd][instancer]") {
   Imported in;
-  import(oneInstancer(R"(
+  importText(oneInstancer(R"(
         int[] protoIndices = [0, 0, 0, 0]
         int64[] ids = [5, 6, 7, -3]
         point3f[] positions = [(0, 0, 0), (1, 0, 0), (2, 0, 0), (3, 0, 0)]
@@ -165,7 +155,7 @@ TEST_CASE("point instancer: ids name the instances, invisibleIds hide, inactiveI
 
   // Without ids the index is the id.
   Imported byIndex;
-  import(oneInstancer(R"(
+  importText(oneInstancer(R"(
         int[] protoIndices = [0, 0, 0]
         point3f[] positions = [(0, 0, 0), (1, 0, 0), (2, 0, 0)]
         int64[] invisibleIds = [0]
@@ -181,7 +171,7 @@ TEST_CASE("point instancer: ids name the instances, invisibleIds hide, inactiveI
 TEST_CASE("point instancer: prototypes beneath are drawn only as instances, sharing one mesh",
           "[scene_io][usd][instancer]") {
   Imported in;
-  import(R"(#usda 1.0
+  importText(R"(#usda 1.0
 (
     metersPerUnit = 1
     upAxis = "Z"
@@ -252,7 +242,7 @@ def Xform "W"
 
 TEST_CASE("point instancer: an instancer inside a prototype is expanded in every copy", "[scene_io][usd][instancer]") {
   Imported in;
-  import(R"(#usda 1.0
+  importText(R"(#usda 1.0
 (
     metersPerUnit = 1
     upAxis = "Z"
@@ -295,7 +285,7 @@ TEST_CASE("point instancer: mismatched arrays, indices and quaternions are locat
           "[scene_io][usd][instancer]") {
   auto firstError = [](const std::string& arrays) {
     Imported in;
-    import(oneInstancer(arrays), in);
+    importText(oneInstancer(arrays), in);
     for (const Diagnostic& d : in.diag.all())
       if (d.severity == Severity::Error) return d.loc.str() + ": " + d.message;
     return std::string();

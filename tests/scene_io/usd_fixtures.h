@@ -7,6 +7,7 @@
 
 #include "behavior/registry.h"
 #include "builtin_behaviors/builtin_behaviors.h"
+#include "scene_io/usd_import.h"
 #include "usd/compose.h"
 #include "usd/layer_io.h"
 
@@ -29,6 +30,20 @@ inline const BehaviorCatalog& builtinCatalog() {
     return r;
   }();
   return registry.catalog();
+}
+
+// A usda text imported onto a fresh stage (without a stage's run defaults),
+// with the import's problems and report.
+struct ImportedStage {
+  Stage stage;
+  Diagnostics diag;
+  UsdImportReport report;
+};
+
+inline void importText(const std::string& text, ImportedStage& out) {
+  UsdImportOptions options;
+  options.runDefaults = false;
+  importUsdPrims(composeText(text), "/", out.stage, "/", builtinCatalog(), options, out.report, out.diag);
 }
 
 }  // namespace sdg::test

@@ -17,6 +17,7 @@
 #include "usd/compose.h"
 #include "usd/layer_io.h"
 #include "usd/usdz_package.h"
+#include "scratch_name.h"
 
 using namespace sdg::usd;
 namespace fs = std::filesystem;
@@ -24,12 +25,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path& scratch() {
-  static struct Dir {
-    fs::path path = fs::temp_directory_path() / ("sdg_anchoring_test_" + std::to_string(getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() { fs::remove_all(path); }
-  } dir;
-  return dir.path;
+  static const sdg::test::ScratchFolder dir("sdg_anchoring_test");
+  return dir.path();
 }
 
 using Entries = std::vector<std::pair<std::string, std::string>>;  // name, bytes (stored, as usdz wants)

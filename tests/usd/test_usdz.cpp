@@ -14,6 +14,7 @@
 #include "usd/crate_builder.h"
 #include "usd/layer_io.h"
 #include "usd/usdz_package.h"
+#include "scratch_name.h"
 
 using namespace sdg::usd;
 using namespace sdg::usd::test;
@@ -29,12 +30,8 @@ struct ZipEntry {
 
 // A scratch folder for this test run, removed at exit.
 const fs::path& scratch() {
-  static struct Dir {
-    fs::path path = fs::temp_directory_path() / ("sdg_usdz_test_" + std::to_string(getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() { fs::remove_all(path); }
-  } dir;
-  return dir.path;
+  static const sdg::test::ScratchFolder dir("sdg_usdz_test");
+  return dir.path();
 }
 
 fs::path writeZip(const std::string& name, const std::vector<ZipEntry>& entries) {

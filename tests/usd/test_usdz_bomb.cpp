@@ -17,6 +17,7 @@
 
 #include "usd/layer_io.h"
 #include "usd/usdz_package.h"
+#include "scratch_name.h"
 
 using namespace sdg::usd;
 namespace fs = std::filesystem;
@@ -124,12 +125,8 @@ std::vector<uint8_t> zipOf(const std::vector<RawEntry>& entries) {
 }
 
 const fs::path& scratch() {
-  static struct Dir {
-    fs::path path = fs::temp_directory_path() / ("sdg_usdz_bomb_" + std::to_string(getpid()));
-    Dir() { fs::create_directories(path); }
-    ~Dir() { fs::remove_all(path); }
-  } dir;
-  return dir.path;
+  static const sdg::test::ScratchFolder dir("sdg_usdz_bomb");
+  return dir.path();
 }
 
 fs::path writeBytes(const std::string& name, const std::vector<uint8_t>& bytes) {
