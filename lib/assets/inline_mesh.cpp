@@ -39,6 +39,9 @@ std::string InlineMesh::id() const {
   std::string key = "inline:" + hex(hashOf(points)) + hex(hashOf(faceVertexCounts)) + hex(hashOf(faceVertexIndices));
   key += normals ? hex(hashOf(*normals)) : "-";
   key += st ? hex(hashOf(*st)) : "-";
+  // Only meshes with colours grow the key, so every other key stays as it was.
+  if (displayColor) key += "c" + hex(hashOf(*displayColor));
+  if (displayOpacity) key += "o" + hex(hashOf(*displayOpacity));
   return key + (flat ? "f" : "s") + (leftHanded ? "l" : "r");
 }
 
@@ -51,6 +54,8 @@ std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim) {
   mesh->faceVertexIndices = *prim.value("faceVertexIndices");
   if (const Attribute* a = prim.findAttribute("normals")) mesh->normals = a->value;
   if (const Attribute* a = prim.findAttribute("primvars:st")) mesh->st = a->value;
+  if (const Attribute* a = prim.findAttribute("primvars:displayColor:faceVarying")) mesh->displayColor = a->value;
+  if (const Attribute* a = prim.findAttribute("primvars:displayOpacity:faceVarying")) mesh->displayOpacity = a->value;
   mesh->flat = prim.getString("subdivisionScheme") == "none";
   mesh->leftHanded = prim.getString("orientation") == "leftHanded";
   return mesh;
@@ -91,6 +96,12 @@ std::string inlineMeshProblem(const InlineMesh& mesh, std::string* attribute) {
     if (std::string problem = primvarProblem("primvars:st", *mesh.st, points, indices.size()); !problem.empty())
       return at("primvars:st", problem);
   }
+  const std::pair<const char*, const std::optional<Value>*> perCorner[] = {
+      {"primvars:displayColor:faceVarying", &mesh.displayColor}, {"primvars:displayOpacity:faceVarying", &mesh.displayOpacity}};
+  for (const auto& [name, value] : perCorner)
+    if (*value && itemsOf(**value) != indices.size())
+      return at(name, std::string(name) + " has " + std::to_string(itemsOf(**value)) +
+                          " items; expected one per face-vertex (" + std::to_string(indices.size()) + ")");
   return "";
 }
 
@@ -147,6 +158,12 @@ MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPa
           out.uvs.emplace_back(st[2 * i], st[2 * i + 1]);
         } else {
           out.uvs.emplace_back(0.0f, 0.0f);
+        }
+        if (mesh.displayColor || mesh.displayOpacity) {
+          Eigen::Vector4f color(1.0f, 1.0f, 1.0f, 1.0f);
+          if (mesh.displayColor) color.head<3>() = item3(*mesh.displayColor, corner);
+          if (mesh.displayOpacity) color.w() = mesh.displayOpacity->get<FloatArray>()[corner];
+          out.colors.push_back(color);
         }
       }
       for (int32_t k = 1; k + 1 < c; ++k) {

@@ -16,6 +16,9 @@ namespace sdg {
 struct InlineMesh {
   Value points, faceVertexCounts, faceVertexIndices;
   std::optional<Value> normals, st;
+  // primvars:displayColor:faceVarying and primvars:displayOpacity:faceVarying:
+  // one item per face-vertex (MeshData::colors when either is present).
+  std::optional<Value> displayColor, displayOpacity;
   bool flat = false;         // subdivisionScheme "none": faceted normals where none are given
   bool leftHanded = false;   // orientation "leftHanded": faces wind clockwise
   std::string id() const;    // "inline:" + the content hashes
@@ -27,8 +30,9 @@ std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim);
 // What is wrong with the arrays ("" when nothing): a face of fewer than 3
 // corners, counts that do not add up to the indices, indices outside the
 // points, a point that is not finite, primvars of a length that is neither
-// per point nor per face-vertex. `attribute` (when given) receives the name
-// of the attribute at fault, to locate the message.
+// per point nor per face-vertex, per-corner colours or opacities that are
+// not one per face-vertex. `attribute` (when given) receives the name of the
+// attribute at fault, to locate the message.
 std::string inlineMeshProblem(const InlineMesh& mesh, std::string* attribute = nullptr);
 
 // Fan-triangulates the faces (RunError naming `primPath` on a problem).

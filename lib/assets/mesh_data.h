@@ -44,6 +44,7 @@ struct MeshPart {
   OpacitySource opacity = OpacitySource::None;  // glTF alphaMode MASK and BLEND
   float opacityConstant = 1.0f;  // multiplies the source's value (glTF: the base colour factor's alpha)
   float opacityCutoff = 0.5f;    // drawn where opacity >= the cut-off
+  bool vertexColors = false;     // baseColor and opacity times MeshData::colors (a USD mesh's displayColor)
 };
 
 // An image stored inside a mesh file (glTF, FBX): its encoded bytes (PNG,
@@ -59,6 +60,10 @@ struct MeshData {
   std::vector<Vec3f> positions;
   std::vector<Vec3f> normals;
   std::vector<Eigen::Vector2f> uvs;
+  // A colour and opacity per vertex (USD's non-constant displayColor and
+  // displayOpacity; white and 1 where only the other is given); empty for
+  // the meshes that have none, so they upload and trace no colour at all.
+  std::vector<Eigen::Vector4f> colors;
   std::vector<uint32_t> indices;  // triangles
   std::vector<MeshPart> parts;
   std::vector<EmbeddedImage> embeddedImages;  // those the parts name

@@ -34,11 +34,31 @@ bool invisible(const Prim& prim) {
 }
 
 
+// displayOpacity and per-vertex colours, which apply without a bound
+// material only. An opacity is a cut-out at one half, as OmniPBR's
+// fractional opacity is (neither renderer blends); a per-vertex one is
+// interpolated across the face first. Meshes with neither keep
+// OpacitySource::None and no vertex colours, exactly as before.
+void displayPrimvarsOf(const Prim& prim, RenderMaterial& m) {
+  const float opacity = prim.getFloat("primvars:displayOpacity");
+  const bool inlineMesh = prim.type() == PrimType::Mesh && prim.findAttribute("points") && prim.getString("asset").empty();
+  const bool perVertexColor = inlineMesh && prim.findAttribute("primvars:displayColor:faceVarying");
+  const bool perVertexOpacity = inlineMesh && prim.findAttribute("primvars:displayOpacity:faceVarying");
+  if (perVertexColor) m.baseColor = Vec3f(1.0f, 1.0f, 1.0f);
+  m.vertexColors = perVertexColor || perVertexOpacity;
+  if (perVertexOpacity || opacity < 1.0f) {
+    m.opacity = OpacitySource::Constant;
+    m.opacityConstant = perVertexOpacity ? 1.0f : opacity;  // the per-vertex one replaces the constant
+    m.opacityCutoff = 0.5f;
+  }
+}
+
 RenderMaterial materialOf(const Stage& stage, const Prim& prim) {
   RenderMaterial m;
   const Prim* material = boundMaterial(stage, prim);
   if (!material) {
     m.baseColor = prim.value("primvars:displayColor")->get<Vec3f>();
+    displayPrimvarsOf(prim, m);
     return m;
   }
   m.fromPrim = true;

@@ -49,6 +49,11 @@ struct RenderMaterial {
   OpacitySource opacity = OpacitySource::None;
   float opacityConstant = 1.0f;
   float opacityCutoff = 0.5f;  // drawn where opacity >= this
+  // No material bound and the mesh has per-vertex colours
+  // (MeshData::colors): the base colour and the opacity constant are
+  // multiplied by the interpolated vertex colour and opacity (baseColor is
+  // then white, so the vertex colour replaces displayColor as in USD).
+  bool vertexColors = false;
   bool cutOut() const { return opacity != OpacitySource::None; }
 };
 

@@ -53,7 +53,8 @@ Json typeSchema(ValueType type) {
     case ValueType::IntArray: return {{"type", "array"}, {"items", {{"type", "integer"}}}};
     case ValueType::FloatArray: return {{"type", "array"}, {"items", {{"type", "number"}}}};
     case ValueType::Point3fArray:
-    case ValueType::Normal3fArray: return {{"type", "array"}, {"items", numbers(3)}};
+    case ValueType::Normal3fArray:
+    case ValueType::Color3fArray: return {{"type", "array"}, {"items", numbers(3)}};
     case ValueType::TexCoord2fArray: return {{"type", "array"}, {"items", numbers(2)}};
   }
   return {};

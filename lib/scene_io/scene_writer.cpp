@@ -69,6 +69,7 @@ void emitValue(YAML::Emitter& out, const Value& value) {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       // Written inline: flat for float[], one [x, y(, z)] per item otherwise.
       const size_t width = size_t(arrayWidth(value.type()));

@@ -96,6 +96,7 @@ UsdTyped toUsd(const Value& v, const AssetResolver& assets) {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       const Kind kind = v.type() == ValueType::FloatArray        ? Kind::Float
                         : v.type() == ValueType::TexCoord2fArray ? Kind::Vec2f
@@ -313,6 +314,18 @@ class Exporter {
     const std::string& path = prim.path();
     for (const AttributeSpec& schema : prim.typeInfo().attributes) {
       const Attribute* a = prim.findAttribute(schema.name);
+      // A Mesh's per-corner displayColor / displayOpacity is USD's primvar
+      // itself (faceVarying): it takes the constant one's name, and place.
+      if (prim.findAttribute(schema.name + ":faceVarying")) continue;
+      if (a && schema.name.ends_with(":faceVarying") && schema.name.starts_with("primvars:display")) {
+        const std::string usdName = schema.name.substr(0, schema.name.size() - std::string(":faceVarying").size());
+        const bool color = a->value.type() == ValueType::Color3fArray;
+        std::vector<double> xs;
+        for (float f : a->value.get<FloatArray>().items()) xs.push_back(double(f));
+        attribute(path, usdName, usd::Value::array(color ? Kind::Vec3f : Kind::Float, std::move(xs)), color ? "color3f[]" : "float[]")
+            .fields[field::kInterpolation] = usd::Value::text(Kind::Token, "faceVarying");
+        continue;
+      }
       bool always = (schema.name == "primvars:displayColor") || (prim.type() == PrimType::Plane && schema.name == "doubleSided");
       if (!a && !always) continue;
       if (!a) fallbacks_.push_back(schema.name);
@@ -322,6 +335,9 @@ class Exporter {
       } else if (schema.name == "primvars:displayColor") {
         const Vec3f& c = v.get<Vec3f>();
         Spec& s = attribute(path, schema.name, usd::Value::array(Kind::Vec3f, {c.x(), c.y(), c.z()}), "color3f[]");
+        s.fields[field::kInterpolation] = usd::Value::text(Kind::Token, "constant");
+      } else if (schema.name == "primvars:displayOpacity") {
+        Spec& s = attribute(path, schema.name, usd::Value::array(Kind::Float, {double(v.get<float>())}), "float[]");
         s.fields[field::kInterpolation] = usd::Value::text(Kind::Token, "constant");
       } else {
         stageAttribute(path, schema.name, v, false);

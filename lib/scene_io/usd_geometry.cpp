@@ -148,6 +148,17 @@ void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const st
     std::vector<float> uv = perCorner(mesh, *st, 2, "vertex", topo, faces, pointCount, diag);
     if (!uv.empty()) stagePrim.setAttribute("primvars:st", Value::makeFloatArray(ValueType::TexCoord2fArray, std::move(uv))).loc = st->loc;
   }
+  // Non-constant displayColor and displayOpacity (the constant ones are
+  // gprim attributes: usd_display_primvars.cpp).
+  const std::pair<std::string, size_t> displayPrimvars[] = {{"primvars:displayColor", 3}, {"primvars:displayOpacity", 1}};
+  for (const auto& [name, width] : displayPrimvars)
+    if (const usd::ComposedProperty* p = mesh.property(name); p && isVaryingDisplayPrimvar(mesh, *p))
+      if (std::optional<std::string> interpolation =
+              displayPrimvarInterpolation(mesh, *p, topo.counts.size(), pointCount, topo.indices.size(), diag)) {
+        std::vector<float> v = perCorner(mesh, *p, width, *interpolation, topo, faces, pointCount, diag);
+        if (!v.empty())
+          stagePrim.setAttribute(name + ":faceVarying", Value::makeFloatArray(width == 3 ? ValueType::Color3fArray : ValueType::FloatArray, std::move(v))).loc = p->loc;
+      }
   for (const char* token : {"subdivisionScheme", "orientation"})
     if (const usd::ComposedProperty* p = mesh.property(token); p && !p->value.empty() && usd::isText(p->value.kind)) {
       const AttributeSpec* spec = findSchemaAttribute(PrimType::Mesh, token);

@@ -194,6 +194,7 @@ class Importer {
     for (const ComposedProperty& prop : prim.properties) {
       if (prop.isRelationship || prop.value.empty()) continue;
       if (std::find(fallbacks.begin(), fallbacks.end(), prop.name) != fallbacks.end()) continue;
+      if (usd_map::importDisplayPrimvar(prim, prop, type, p, diag_)) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
       if (isPointInstancer(prim) && isPointInstancerAttribute(prop.name)) continue;
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;

@@ -27,9 +27,26 @@ std::vector<XformOp> unitsOps(const usd::LayerUnits& from, const usd::LayerUnits
 double unitsScale(const usd::LayerUnits& from, const usd::LayerUnits& to);
 
 // A composed Mesh's geometry onto a stage Mesh prim: points, counts and
-// indices, normals and primvars:st of every interpolation (indexed ones
-// expanded) written per face-vertex, subdivisionScheme, orientation.
+// indices, normals, primvars:st and non-constant displayColor /
+// displayOpacity of every interpolation (indexed ones expanded) written per
+// face-vertex, subdivisionScheme, orientation.
 // `faces` (when given) keeps only those faces (a GeomSubset's).
+// primvars:displayColor and primvars:displayOpacity (usd_display_primvars.cpp).
+// Whether the name is one of them.
+bool isDisplayPrimvar(const std::string& name);
+// Whether one of them is not constant: an authored interpolation other than
+// "constant", or none and more than one element.
+bool isVaryingDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProperty& p);
+// The interpolation of a varying one: authored, else the one its element
+// count fits (vertex, faceVarying, uniform); nullopt after an error.
+std::optional<std::string> displayPrimvarInterpolation(const usd::ComposedPrim& mesh, const usd::ComposedProperty& p,
+                                                       size_t faces, size_t points, size_t corners, Diagnostics& diag);
+// A gprim's constant one onto the stage attribute of the same name (the
+// first element of a non-constant one on a gprim that is not a Mesh, with
+// a warning); true when `p` is one of them (handled, or reported).
+bool importDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProperty& p, PrimType type, Prim& stagePrim,
+                          Diagnostics& diag);
+
 void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<int32_t>* faces,
                         Diagnostics& diag);
 

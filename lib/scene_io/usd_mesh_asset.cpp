@@ -10,13 +10,23 @@ namespace sdg {
 namespace {
 
 // The part a Mesh prim draws with: its bound Material's inputs, else its
-// displayColor.
+// displayColor and displayOpacity, per vertex when it has them (as
+// render_list.cpp reads them for a Mesh on the stage).
 MeshPart partFor(const Stage& stage, const Prim& mesh) {
   MeshPart part;
   part.hasMaterial = true;
   const Prim* material = mesh.material() ? stage.find(mesh.material()->path) : nullptr;
   if (!material) {
     if (const Value* c = mesh.value("primvars:displayColor")) part.baseColor = c->get<Vec3f>();
+    const bool perVertexColor = mesh.findAttribute("primvars:displayColor:faceVarying") != nullptr;
+    const bool perVertexOpacity = mesh.findAttribute("primvars:displayOpacity:faceVarying") != nullptr;
+    const float opacity = mesh.getFloat("primvars:displayOpacity");
+    if (perVertexColor) part.baseColor = Vec3f(1.0f, 1.0f, 1.0f);
+    part.vertexColors = perVertexColor || perVertexOpacity;
+    if (perVertexOpacity || opacity < 1.0f) {
+      part.opacity = OpacitySource::Constant;
+      part.opacityConstant = perVertexOpacity ? 1.0f : opacity;
+    }
     return part;
   }
   part.baseColor = material->value("inputs:diffuse_color_constant")->get<Vec3f>();
@@ -34,6 +44,12 @@ void append(MeshData& out, const MeshData& m, const Matrix4d& world, MeshPart pa
   for (const Vec3f& n : m.normals) out.normals.push_back((normalMatrix * n.cast<double>()).normalized().cast<float>());
   for (size_t i = 0; i < m.positions.size(); ++i)
     out.uvs.push_back(i < m.uvs.size() ? m.uvs[i] : Eigen::Vector2f(0.0f, 0.0f));
+  // Colours for every vertex once any mesh has them (white for the others).
+  if (!m.colors.empty() || !out.colors.empty()) {
+    out.colors.resize(base, Eigen::Vector4f::Ones());
+    for (size_t i = 0; i < m.positions.size(); ++i)
+      out.colors.push_back(i < m.colors.size() ? m.colors[i] : Eigen::Vector4f::Ones());
+  }
   part.firstIndex = uint32_t(out.indices.size());
   part.indexCount = uint32_t(m.indices.size());
   for (uint32_t i : m.indices) out.indices.push_back(base + i);

@@ -295,6 +295,7 @@ struct Reader {
       case ValueType::FloatArray:
       case ValueType::Point3fArray:
       case ValueType::Normal3fArray:
+      case ValueType::Color3fArray:
       case ValueType::TexCoord2fArray: return floatArray(n, type);
     }
     return std::nullopt;

@@ -136,6 +136,7 @@ py::object toPython(const Value& v) {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       // float[] flat; the tuple types one tuple per item.
       const size_t width = size_t(arrayWidth(v.type()));
@@ -212,6 +213,7 @@ Value fromPython(py::handle o, ValueType type, const std::string& what) {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       const size_t width = size_t(arrayWidth(type));
       std::vector<float> flat;

@@ -45,6 +45,8 @@ const std::vector<AttributeSpec>& gprim() {
       imageable(),
       {attr("primvars:displayColor", Value::makeColor3f(Vec3f(0.5f, 0.5f, 0.5f)),
             "Base colour used when no material is bound."),
+       positive(attr("primvars:displayOpacity", Value::makeFloat(1.0f),
+                     "Opacity used when no material is bound: drawn where it is at least 0.5 (a cut-out).")),
        attr("doubleSided", Value::makeBool(false), "Render back faces too.")});
   return specs;
 }
@@ -93,6 +95,12 @@ std::vector<PrimTypeInfo> buildTable() {
                                      "Inline geometry: normals, one per face-vertex or one per point (computed when absent)."),
                                 attr("primvars:st", Value::makeFloatArray(ValueType::TexCoord2fArray, {}),
                                      "Inline geometry: texture coordinates, one per face-vertex or one per point."),
+                                attr("primvars:displayColor:faceVarying", Value::makeFloatArray(ValueType::Color3fArray, {}),
+                                     "Inline geometry: a colour per face-vertex, replacing primvars:displayColor (USD's "
+                                     "non-constant displayColor; used when no material is bound)."),
+                                attr("primvars:displayOpacity:faceVarying", Value::makeFloatArray(ValueType::FloatArray, {}),
+                                     "Inline geometry: an opacity per face-vertex, replacing primvars:displayOpacity "
+                                     "(interpolated, drawn where at least 0.5; used when no material is bound)."),
                                 tokenAttr("subdivisionScheme", "catmullClark", {"catmullClark", "loop", "bilinear", "none"},
                                           "Drawn as the control cage; 'none' makes computed normals faceted, the others smooth."),
                                 tokenAttr("orientation", "rightHanded", {"rightHanded", "leftHanded"},

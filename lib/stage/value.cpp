@@ -36,6 +36,7 @@ constexpr std::array kTypes = {
     TypeInfo{ValueType::Point3fArray, "point3f[]", "a list of points (lists of 3 numbers)"},
     TypeInfo{ValueType::Normal3fArray, "normal3f[]", "a list of normals (lists of 3 numbers)"},
     TypeInfo{ValueType::TexCoord2fArray, "texCoord2f[]", "a list of texture coordinates (lists of 2 numbers)"},
+    TypeInfo{ValueType::Color3fArray, "color3f[]", "a list of colours (lists of 3 numbers r, g, b)"},
 };
 constexpr std::array<ValueType, kTypes.size()> kTypeList = [] {
   std::array<ValueType, kTypes.size()> list{};
@@ -67,7 +68,8 @@ int arrayWidth(ValueType type) {
     case ValueType::FloatArray: return 1;
     case ValueType::TexCoord2fArray: return 2;
     case ValueType::Point3fArray:
-    case ValueType::Normal3fArray: return 3;
+    case ValueType::Normal3fArray:
+    case ValueType::Color3fArray: return 3;
     default: return 0;
   }
 }
@@ -150,6 +152,7 @@ std::string Value::toString() const {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       // Messages show the first items only: a mesh has millions.
       const size_t width = size_t(arrayWidth(type_));

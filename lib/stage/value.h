@@ -23,8 +23,9 @@ enum class ValueType {
   String, Token, Asset, AssetArray, StringArray,
   // Numeric arrays (inline mesh geometry), shared between copies:
   // int[] and float[] one number per item; point3f[] and normal3f[] three;
-  // texCoord2f[] two (stored flat).
+  // texCoord2f[] two; color3f[] three (stored flat).
   IntArray, FloatArray, Point3fArray, Normal3fArray, TexCoord2fArray,
+  Color3fArray,  // per-corner displayColor (three numbers per item)
 };
 
 // Numbers per item of a numeric array type (0 for every other type).

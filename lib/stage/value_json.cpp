@@ -59,6 +59,7 @@ Json valueToJson(const Value& v) {
     case ValueType::FloatArray:
     case ValueType::Point3fArray:
     case ValueType::Normal3fArray:
+    case ValueType::Color3fArray:
     case ValueType::TexCoord2fArray: {
       // Flat for float[], one list per item for the tuple types.
       const size_t width = size_t(arrayWidth(v.type()));

@@ -313,6 +313,7 @@ SurfaceGeometry EmbreeScene::geometry(const SurfaceHit& hit) const {
   } else {
     g.uv = g.uvEdge1 = g.uvEdge2 = Vec2f::Zero();
   }
+  if (d.colors.size() == d.positions.size()) g.color = w * d.colors[i0] + hit.u * d.colors[i1] + hit.v * d.colors[i2];
   // The part whose range starts at or before the triangle.
   const auto& starts = mesh.partFirstTriangle;
   const auto above = std::upper_bound(starts.begin(), starts.end(), hit.triangle);

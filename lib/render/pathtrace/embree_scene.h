@@ -59,6 +59,7 @@ struct SurfaceGeometry {
   Vec3f edge1, edge2;     // world-space p1 - p0, p2 - p0, for tangent frames
   Vec2f uvEdge1, uvEdge2; // their uv differences
   uint32_t part = 0;      // the MeshPart holding the triangle
+  Eigen::Vector4f color{1.0f, 1.0f, 1.0f, 1.0f};  // MeshData::colors interpolated; white when the mesh has none
 };
 
 // Decides for a candidate hit on a cut-out instance whether the surface is

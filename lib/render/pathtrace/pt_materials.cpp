@@ -65,6 +65,7 @@ SurfaceMaterial resolveSurfaceMaterial(const RenderItem& item, const MeshPart& p
     m.opacityConstant = part.opacityConstant;
     m.opacityCutoff = part.opacityCutoff;
     m.normalScale = part.normalScale;
+    m.vertexColors = part.vertexColors;
   } else {
     m.baseColor = prim.baseColor;
     m.roughness = prim.roughness;
@@ -77,6 +78,7 @@ SurfaceMaterial resolveSurfaceMaterial(const RenderItem& item, const MeshPart& p
     m.normalScale = prim.normalScale;
     m.specularLevel = prim.specularLevel;
     m.triplanar = prim.projectUvw;
+    m.vertexColors = prim.vertexColors;
   }
   // The texture placement is the prim's in both cases (it travels per instance).
   m.textureScale = prim.textureScale;
@@ -112,6 +114,7 @@ bool surfaceOpaque(const SurfaceMaterial& m, const SurfaceGeometry& g) {
     case OpacitySource::OpacityMap: opacity *= sampleMap(m, *m.opacityMap, g, g.shadingNormal).x(); break;
     case OpacitySource::BaseColorAlpha: opacity *= sampleMap(m, *m.baseMap, g, g.shadingNormal).w(); break;
   }
+  if (m.vertexColors) opacity *= g.color.w();
   return opacity >= m.opacityCutoff;
 }
 
@@ -130,6 +133,7 @@ ShadedSurface shadeSurface(const SurfaceMaterial& m, const SurfaceGeometry& g, c
   }
   ShadedSurface s;
   s.albedo = m.baseMap ? Vec3f(sampleMap(m, *m.baseMap, g, n).head<3>()) : m.baseColor;
+  if (m.vertexColors) s.albedo = s.albedo.cwiseProduct(g.color.head<3>());
   s.material.baseColor = s.albedo;
   s.material.roughness = std::clamp(roughness, 0.0f, 1.0f);
   s.material.metallic = std::clamp(metallic, 0.0f, 1.0f);

@@ -16,7 +16,9 @@
 //   bump_factor, the frame from the uvs' gradients on the surface
 //   (Schueler 2013, as the rasterizer's screen-space version computes it);
 // - cut-outs: clear where opacity_constant x (the opacity map's red, or
-//   the base colour's alpha) < the cut-off.
+//   the base colour's alpha) < the cut-off;
+// - vertex colours (RenderMaterial::vertexColors): the base colour times
+//   the interpolated vertex colour, the opacity times its alpha.
 #include "render/pathtrace/bsdf.h"
 #include "render/pathtrace/embree_scene.h"
 #include "render/pathtrace/pt_textures.h"
@@ -41,6 +43,7 @@ struct SurfaceMaterial {
   float normalScale = 1.0f;
   float specularLevel = 0.5f;  // OmniPBR's; a mesh file's part material keeps the default, as in the rasterizer
   bool triplanar = false;
+  bool vertexColors = false;  // base colour and opacity times SurfaceGeometry::color
   Vec2f textureScale{1.0f, 1.0f};
   float cosRotate = 1.0f, sinRotate = 0.0f;
 

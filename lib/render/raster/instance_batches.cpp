@@ -17,7 +17,7 @@ constexpr uint32_t kUnseen = std::numeric_limits<uint32_t>::max();
 // their influences and the base colour travel per instance.
 auto batchKey(const RenderMaterial& m) {
   return std::tie(m.fromPrim, m.maps, m.projectUvw, m.opacity, m.normalScale, m.specularLevel, m.opacityConstant,
-                  m.opacityCutoff);
+                  m.opacityCutoff, m.vertexColors);
 }
 
 bool sameMaterialSource(const RenderItem& a, const RenderItem& b) {

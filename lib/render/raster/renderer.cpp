@@ -101,6 +101,7 @@ Renderer::~Renderer() {
   for (auto& [key, m] : meshes_) {
     gl_.glDeleteVertexArrays(1, &m->vao);
     gl_.glDeleteBuffers(4, m->buffers);
+    if (m->colorBuffer) gl_.glDeleteBuffers(1, &m->colorBuffer);
   }
   for (auto* cache : {&colorTextures_, &dataTextures_})
     for (auto& [key, t] : *cache) gl_.glDeleteTextures(1, &t.id);
@@ -143,6 +144,10 @@ const Renderer::GpuMesh& Renderer::mesh(const RenderItem& item) {
   upload(m->buffers[0], 0, 3, data.positions.data(), data.positions.size() * sizeof(Vec3f));
   upload(m->buffers[1], 1, 3, data.normals.data(), data.normals.size() * sizeof(Vec3f));
   upload(m->buffers[2], 2, 2, data.uvs.data(), data.uvs.size() * sizeof(Eigen::Vector2f));
+  if (!data.colors.empty()) {
+    gl_.glGenBuffers(1, &m->colorBuffer);
+    upload(m->colorBuffer, 14, 4, data.colors.data(), data.colors.size() * sizeof(Eigen::Vector4f));
+  }
   gl_.glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m->buffers[3]);
   gl_.glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(data.indices.size() * sizeof(uint32_t)), data.indices.data(),
                    GL_STATIC_DRAW);
@@ -441,7 +446,8 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
       const bool useFile = !item.material.fromPrim && part.hasMaterial;
       const MaterialMaps& maps = useFile ? part.maps : item.material.maps;
       const OpacitySource opacity = useFile ? part.opacity : item.material.opacity;
-      const ShadingVariant shading = ShadingVariant::of(maps, !useFile && item.material.projectUvw, opacity);
+      ShadingVariant shading = ShadingVariant::of(maps, !useFile && item.material.projectUvw, opacity);
+      shading.vertexColors = m.colorBuffer != 0 && (useFile ? part.vertexColors : item.material.vertexColors);
       bindMaps(maps, item.primPath);
       const GLsizei indexCount = GLsizei(part.indexCount);
       const void* firstIndex = reinterpret_cast<const void*>(uintptr_t(part.firstIndex) * sizeof(uint32_t));

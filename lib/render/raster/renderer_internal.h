@@ -54,6 +54,7 @@ struct Renderer::GpuMesh {
   uint32_t slot = 0;  // index in meshBySlot_
   unsigned vao = 0;
   unsigned buffers[4] = {0, 0, 0, 0};
+  unsigned colorBuffer = 0;  // attribute 14, only for a mesh with MeshData::colors
   std::vector<MeshPart> parts;
   Eigen::AlignedBox3f bounds;
 };

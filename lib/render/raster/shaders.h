@@ -68,6 +68,7 @@ layout(location = 10) in vec3 aBaseColor;
 layout(location = 11) in vec4 aSurface;
 layout(location = 12) in vec4 aTextureTransform;
 layout(location = 13) in uint aInstanceId;
+layout(location = 14) in vec4 aColor;  // the mesh's vertex colours, when it has them
 uniform mat4 uViewProjection;
 uniform mat4 uShadowMatrix[4];
 out vec3 vWorldPosition;
@@ -82,6 +83,7 @@ out vec4 vShadowCoord2;
 out vec4 vShadowCoord3;
 out vec3 vWorldNormal;
 out vec2 vUv;
+out vec4 vColor;
 flat out vec3 vBaseColor;
 flat out vec4 vSurface;
 flat out vec4 vTextureTransform;
@@ -92,6 +94,7 @@ void main() {
   vWorldPosition = world.xyz;
   vWorldNormal = aNormalMatrix * aNormal;
   vUv = aUv;
+  vColor = aColor;
   vBaseColor = aBaseColor;
   vSurface = aSurface;
   vTextureTransform = aTextureTransform;
@@ -109,6 +112,9 @@ inline constexpr const char* kSceneFragment = R"(
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 in vec2 vUv;
+#if VERTEX_COLORS
+in vec4 vColor;  // rgb, opacity: multiply the base colour and the opacity
+#endif
 
 uniform vec3 uCameraPosition;
 uniform vec3 uCameraForward;
@@ -166,7 +172,7 @@ vec2 transformUv(vec2 uv) {
 // triplanar), BASE_MAP, ROUGHNESS_MAP and METALLIC_MAP (0 none, 1 the red
 // channel of their own map, 2 the green / blue channel of the ORM map),
 // NORMAL_MAP, OPACITY (0 opaque, 1 constant, 2 the opacity map's red
-// channel, 3 the base colour's alpha) and HAS_DOME are literals, not tested
+// channel, 3 the base colour's alpha), VERTEX_COLORS and HAS_DOME are literals, not tested
 // per pixel: llvmpipe runs both sides of a branch on a uniform with lanes
 // masked, so a runtime test would make every pixel pay for every lookup.
 vec4 sampleMap(sampler2D map, vec3 n) {
@@ -302,6 +308,9 @@ void main() {
 #elif OPACITY == 3
   opacity *= baseTexel.a;
 #endif
+#if VERTEX_COLORS
+  opacity *= vColor.a;
+#endif
   if (opacity < uOpacityCutoff) discard;
 #endif
   // A prim's material: value = mix(constant, map, influence) (OmniPBR); a
@@ -325,6 +334,9 @@ void main() {
   vec3 base = baseTexel.rgb;
 #else
   vec3 base = part ? uPartBaseColor : vBaseColor;
+#endif
+#if VERTEX_COLORS
+  base *= vColor.rgb;
 #endif
   vec3 geometric = n;
   n = mappedNormal(n);

@@ -16,11 +16,13 @@ struct ShadingVariant {
   uint8_t metallicMap = 0;   // 0 none, 1 its own map's red, 2 the ORM map's blue
   uint8_t normalMap = 0;     // 0 none, 1 sampled (uv projection only)
   uint8_t opacity = 0;       // OpacitySource: 0 opaque, 1 constant, 2 opacity map, 3 base colour's alpha
+  uint8_t vertexColors = 0;  // 1: base colour and opacity times the mesh's vertex colour (RenderMaterial::vertexColors)
 
-  static constexpr int kCount = 3 * 2 * 3 * 3 * 2 * 4;
+  static constexpr int kCount = 3 * 2 * 3 * 3 * 2 * 4 * 2;
   // A dense index in [0, kCount), for a per-frame table of programs.
   int index() const {
-    return ((((projection * 2 + baseMap) * 3 + roughnessMap) * 3 + metallicMap) * 2 + normalMap) * 4 + opacity;
+    return (((((projection * 2 + baseMap) * 3 + roughnessMap) * 3 + metallicMap) * 2 + normalMap) * 4 + opacity) * 2 +
+           vertexColors;
   }
   void appendDefines(std::string& out) const {
     auto define = [&](const char* name, int value) {
@@ -36,6 +38,7 @@ struct ShadingVariant {
     define("METALLIC_MAP", metallicMap);
     define("NORMAL_MAP", normalMap);
     define("OPACITY", opacity);
+    define("VERTEX_COLORS", vertexColors);
   }
 
   // The variant for a part whose maps are `maps`: a separate roughness or

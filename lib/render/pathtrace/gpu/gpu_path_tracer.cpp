@@ -88,7 +88,7 @@ constexpr FeatureSwitch kFeatureSwitches[] = {
     {"SDG_LOBE_MULTIPLIERS", kGpuLobeMultipliers}, {"SDG_SPHERE_LIGHTS", kGpuSphereLights},
     {"SDG_SHAPE_LIGHTS", kGpuShapeLights},     {"SDG_DISTANT_LIGHTS", kGpuDistantLights},
     {"SDG_DOME_LIGHTS", kGpuDomeLights},       {"SDG_BASE_COLOR_MAPS", kGpuBaseColorMaps},
-    {"SDG_SURFACE_MAPS", kGpuSurfaceMaps},
+    {"SDG_SURFACE_MAPS", kGpuSurfaceMaps},     {"SDG_VERTEX_COLORS", kGpuVertexColors},
 };
 constexpr uint32_t switchedFeatures() {
   uint32_t all = 0;

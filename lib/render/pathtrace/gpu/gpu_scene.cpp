@@ -109,6 +109,11 @@ uint32_t GpuSceneData::meshFor(const RenderItem& item) {
                              n.x(), n.y(), n.z(), uv.y()};
     vertices.insert(vertices.end(), packed, packed + 8);
   }
+  if (d.colors.size() == d.positions.size() && !d.colors.empty()) {
+    record.flags[3] = int32_t(vertices.size() / 4) + 1;
+    for (const Eigen::Vector4f& c : d.colors) vertices.insert(vertices.end(), c.data(), c.data() + 4);
+    vertices.resize((vertices.size() + 7) / 8 * 8, 0.0f);  // the next mesh's base counts in 8s
+  }
   // Each triangle's part: the part whose range starts at or before it (embree_scene.cpp's rule).
   std::vector<std::pair<uint32_t, uint32_t>> starts;
   for (size_t p = 0; p < d.parts.size(); ++p) starts.emplace_back(d.parts[p].firstIndex / 3, uint32_t(p));
@@ -190,6 +195,7 @@ void GpuSceneData::update(const RenderList& list) {
       std::copy(info, info + 4, r.mapInfo);
       r.modes[0] = m.partMaterial;
       r.modes[1] = m.triplanar;
+      r.modes[2] = m.vertexColors;
       materials.push_back(r);
     }
     const Eigen::Matrix3d linear = item.worldFromLocal.block<3, 3>(0, 0);
@@ -243,6 +249,7 @@ uint32_t GpuSceneData::featuresInUse() const {
     if (m.modes[1] != 0) features |= kGpuTriplanar;
     if (m.maps[0] >= 0) features |= kGpuBaseColorMaps;
     if (m.maps[1] >= 0 || m.maps[2] >= 0) features |= kGpuSurfaceMaps;
+    if (m.modes[2] != 0) features |= kGpuVertexColors;
   }
   for (const GpuInstanceRecord& i : instances)
     if (i.flags[0]) features |= kGpuOpacity;

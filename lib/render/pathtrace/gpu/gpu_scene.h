@@ -26,7 +26,7 @@ namespace sdg {
 
 struct GpuMeshRecord {
   int32_t bases[4];  // nodes, leaf-order triangles, indices, vertices
-  int32_t flags[4];  // has normals, has uvs, root link, -
+  int32_t flags[4];  // has normals, has uvs, root link, vertex colours (first vec4 of `vertices` + 1; 0: none)
 };
 struct GpuInstanceRecord {
   float world[12], local[12], normal[12];  // three rows of four each
@@ -58,7 +58,8 @@ enum GpuKernelFeature : uint32_t {
   kGpuDomeLights = 1u << 8,        // a dome light
   kGpuBaseColorMaps = 1u << 9,     // a material with a base colour map
   kGpuSurfaceMaps = 1u << 10,      // a material with a roughness or metallic map
-  kGpuAllFeatures = (1u << 11) - 1,
+  kGpuVertexColors = 1u << 11,     // a material that multiplies by the mesh's vertex colours
+  kGpuAllFeatures = (1u << 12) - 1,
 };
 
 class GpuSceneData {
@@ -72,7 +73,9 @@ class GpuSceneData {
   // Meshes (append-only).
   std::vector<GpuBvhNode> meshNodes;
   std::vector<float> triangles;  // 16 per triangle: the unit-triangle map's rows u, v, z; the triangle's index
-  std::vector<float> vertices;   // 8 per vertex: position, u, normal, v
+  // 8 per vertex: position, u, normal, v; then, for a mesh with vertex
+  // colours only, 4 per vertex (rgb, opacity), padded to whole 8s.
+  std::vector<float> vertices;
   std::vector<uint32_t> indices; // 4 per triangle: vertex indices, part
   std::vector<GpuMeshRecord> meshes;
   bool meshesChanged = false;

@@ -21,6 +21,7 @@ const bool kDistantLights = SDG_DISTANT_LIGHTS != 0;     // a distant light
 const bool kDomeLights = SDG_DOME_LIGHTS != 0;           // a dome light
 const bool kBaseColorMaps = SDG_BASE_COLOR_MAPS != 0;    // a material with a base colour map
 const bool kSurfaceMaps = SDG_SURFACE_MAPS != 0;         // a material with a roughness or metallic map
+const bool kVertexColors = SDG_VERTEX_COLORS != 0;       // a material times the mesh's vertex colours
 
 const float kPi = 3.14159265358979323846;
 const float kInf = uintBitsToFloat(0x7f800000u);

@@ -17,13 +17,15 @@ layout(std430, binding = 3) readonly buffer TopNodes { Node topNodes[]; };    //
 // Triangles in leaf order, four rows each: the unit-triangle map's rows u, v and z (gpu_scene.cpp's
 // unitTriangle, mesh space), then the mesh's own triangle index (x, as a float: exact below 2^24).
 layout(std430, binding = 4) readonly buffer Triangles { vec4 triangles[]; };
-// Vertices: position (w: u), normal (w: v).
+// Vertices: position (w: u), normal (w: v); a mesh's vertex colours (rgb,
+// opacity) follow its vertices when it has them (Mesh.flags.w).
 layout(std430, binding = 5) readonly buffer Vertices { vec4 vertices[]; };
 // Per triangle in the mesh's own order: its three vertex indices and its part.
 layout(std430, binding = 6) readonly buffer Indices { uvec4 indices[]; };
 struct Mesh {
   ivec4 bases;  // nodes, leaf-order triangles, indices, vertices
-  ivec4 flags;  // has normals, has uvs, root item (0, or a leaf code when the whole mesh is one leaf), -
+  ivec4 flags;  // has normals, has uvs, root item (0, or a leaf code when the whole mesh is one leaf),
+                // vertex colours (their first vec4 in vertices + 1; 0: none)
 };
 layout(std430, binding = 7) readonly buffer Meshes { Mesh meshes[]; };
 struct Instance {
@@ -41,7 +43,7 @@ struct Material {
   vec4 placement;   // texture scale xy, specular level, -
   ivec4 maps;       // base, roughness, metallic, normal (-1: none)
   ivec4 mapInfo;    // opacity map, roughness channel, metallic channel, opacity source (0 none, 1 constant, 2 map, 3 base alpha)
-  ivec4 modes;      // part material, triplanar, -, -
+  ivec4 modes;      // part material, triplanar, vertex colours, -
 };
 layout(std430, binding = 9) readonly buffer Materials { Material materials[]; };
 layout(std430, binding = 10) readonly buffer TextureTable { ivec4 textures[]; };  // first texel, width, height, sRGB
@@ -79,6 +81,7 @@ struct Geometry {
   vec3 edge1, edge2;
   vec2 uvEdge1, uvEdge2;
   uint part;
+  vec4 color;  // the mesh's vertex colour (rgb, opacity) interpolated; white without
 };
 vec3 rowsTimes(vec4 rows[3], vec3 p, float w) {
   vec4 h = vec4(p, w);
@@ -116,6 +119,11 @@ Geometry surfaceGeometry(uint instance, uint triangle, float u, float v) {
     g.uv = g.uvEdge1 = g.uvEdge2 = vec2(0.0);
   }
   g.part = tri.w;
+  g.color = vec4(1.0);
+  if (kVertexColors && mesh.flags.w > 0) {
+    uint cb = uint(mesh.flags.w - 1);
+    g.color = w * vertices[cb + tri.x] + u * vertices[cb + tri.y] + v * vertices[cb + tri.z];
+  }
   return g;
 }
 
@@ -173,6 +181,7 @@ bool surfaceOpaque(Material m, Geometry g) {
     vec4 t = sampleMap(m, source == 2 ? m.mapInfo.x : m.maps.x, g, g.shadingNormal);
     o *= source == 2 ? t.x : t.w;
   }
+  if (kVertexColors && m.modes.z != 0) o *= g.color.w;
   return o >= m.opacity.y;
 }
 struct Shaded {
@@ -202,6 +211,7 @@ Shaded shadeSurface(Material m, Geometry g, vec3 towardViewer) {
       s.albedo = t.xyz;
     }
   }
+  if (kVertexColors && m.modes.z != 0) s.albedo *= g.color.rgb;
   s.baseColor = s.albedo;
   s.roughness = clamp(roughness, 0.0, 1.0);
   s.metallic = clamp(metallic, 0.0, 1.0);
