@@ -17,7 +17,11 @@ void callHook(Behavior& b, const char* hook, Call&& call) {
 }  // namespace
 
 BehaviorRuntime::BehaviorRuntime(Stage& stage, const BehaviorRegistry& registry, BehaviorContext context)
-    : stage_(stage), registry_(registry), context_(context), timeline_(stage.metadata().timeCodesPerSecond) {
+    : stage_(stage),
+      registry_(registry),
+      context_(context),
+      timeline_(stage.metadata().timeCodesPerSecond),
+      animation_(stage) {
   context_.stage = &stage_;
   context_.events = &events_;
 }
@@ -58,6 +62,7 @@ void BehaviorRuntime::init() {
 void BehaviorRuntime::play() {
   if (!timeline_.play()) return;
   notePhase(activity::Phase::Frame, timeline_.steps());
+  animation_.play();
   for (auto& b : behaviors_) callHook(*b, "on_play", [&] { b->onPlay(); });
 }
 
@@ -81,6 +86,7 @@ void BehaviorRuntime::stopHooks() {
   // Reverse order: a behavior added later restores before those it built on.
   for (auto it = behaviors_.rbegin(); it != behaviors_.rend(); ++it)
     callHook(**it, "on_stop", [&] { (*it)->onStop(); });
+  animation_.stop();  // the samples were under every behavior: put back last
 }
 
 void BehaviorRuntime::update() {
@@ -90,6 +96,7 @@ void BehaviorRuntime::update() {
   events_.dispatch();
   double dt = timeline_.advance();
   if (dt <= 0) return;
+  animation_.update(timeline_.steps(), timeline_.rate());
   for (auto& b : behaviors_) callHook(*b, "on_update", [&] { b->onUpdate(timeline_.time(), dt); });
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Runs the behaviors of a stage: one instance per (prim, attached behavior),
 // in stage pre-order and, per prim, in the order the scene lists them. Each
-// update first delivers queued events, then (while playing) calls onUpdate.
+// update first delivers queued events, then (while playing) writes the
+// stage's own animation at the new time (animation_playback.h) and calls
+// onUpdate.
 // Stopping delivers what is still queued first (the events published in
 // the last update), so no event is lost at the end of a run. Every hook
 // call is recorded in run_activity for messages about a stuck or
@@ -9,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "behavior/animation_playback.h"
 #include "behavior/behavior.h"
 #include "behavior/event_bus.h"
 #include "behavior/registry.h"
@@ -47,6 +50,7 @@ class BehaviorRuntime {
   BehaviorContext context_;
   EventBus events_;
   Timeline timeline_;
+  AnimationPlayback animation_;  // the stage's own animation, under the behaviors
   std::vector<std::unique_ptr<Behavior>> behaviors_;
   uint64_t updates_ = 0;
   uint64_t prerollUpdates_ = 0;

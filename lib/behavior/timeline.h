@@ -16,6 +16,7 @@ class Timeline {
   bool playing() const { return state_ == State::Playing; }
   double time() const { return double(steps_) / rate_; }
   double stepSize() const { return dt_; }
+  double rate() const { return rate_; }  // updates a second
   // Steps taken since the timeline last started playing from a stop.
   uint64_t steps() const { return steps_; }
 

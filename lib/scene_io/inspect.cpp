@@ -22,11 +22,22 @@ std::string options(const OptionSet& set) {
 // smart asset's, with the chain of references), a --set flag, or the default.
 std::string origin(const SourceLoc& loc) { return "  # " + valueOrigin(loc); }
 
+// "  (animated: 3 samples, time codes 0 to 8)" for a value the stage's own
+// animation plays (a USD stage's time samples); "" otherwise.
+std::string animatedNote(const Stage& stage, const Prim& prim, const std::string& name) {
+  const AnimatedValue* a = stage.animation().find(prim.path(), name);
+  if (!a) return "";
+  return "  (animated: " + std::to_string(a->times.size()) + " samples, time codes " +
+         text::formatDouble(a->times.front()) + " to " + text::formatDouble(a->times.back()) + ")";
+}
+
 void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) {
   std::string indent(2 * (path::depth(prim.path()) - 1), ' ');
   std::string detail = indent + "    ";
   out << indent << prim.path() << "  " << prim.typeInfo().name << (prim.loc().via ? origin(prim.loc()) : "") << "\n";
-  for (const XformOp& op : prim.xformOps()) out << detail << op.attributeName() << " " << op.value.toString() << "\n";
+  for (const XformOp& op : prim.xformOps())
+    out << detail << op.attributeName() << " " << op.value.toString() << animatedNote(stage, prim, op.attributeName())
+        << "\n";
   if (!prim.xformOps().empty() || prim.typeInfo().xformable) {
     Vec3d t = stage.worldMatrix(prim).block<3, 1>(0, 3);
     if (!prim.xformOps().empty())
@@ -38,7 +49,7 @@ void inspectPrim(const Stage& stage, const Prim& prim, std::ostringstream& out) 
   for (const auto& [name, attribute] : prim.attributes()) {
     if (name.rfind("exposedVar:", 0) == 0) continue;  // listed under their behavior
     out << detail << name << " " << attribute.value.toString() << (attribute.custom ? "  (custom)" : "")
-        << origin(attribute.loc) << "\n";
+        << animatedNote(stage, prim, name) << origin(attribute.loc) << "\n";
   }
   for (const std::string& behavior : prim.behaviors()) {
     out << detail << "behavior " << behavior << "\n";

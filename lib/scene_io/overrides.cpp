@@ -203,6 +203,9 @@ void applyOverrides(std::span<const std::string> overrides, const BehaviorCatalo
     if (o.target[0] == '/') applyToPrim(o, catalog, scene, diag);
     else applyToSettings(o, scene, diag);
   }
+  // The scene's own values (its entries for a mounted USD file's prims, and
+  // --set) are stronger opinions than the file's time samples.
+  scene.stage.animation().dropOverridden(scene.stage);
 }
 
 }  // namespace sdg

@@ -11,6 +11,7 @@
 #include "core/text.h"
 #include "scene_io/overrides.h"
 #include "scene_io/scene_validate.h"
+#include "scene_io/usd_animation.h"
 #include "scene_io/usd_export.h"
 #include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
@@ -152,6 +153,26 @@ class Importer {
     const std::string stagePath = mapPath(prim.path);
     Prim& p = stage_.definePrim(stagePath, *type);
     p.loc() = prim.loc;
+    const double scale = importValues(prim, p, parent, *type, outerUnits, unitScale, knownType);
+    if (*type == PrimType::Material) {
+      importUsdMaterial(composed_, prim, p, diag_, report_);
+      importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_,
+                          options_, report_, diag_);
+      return;  // its shaders are the material's
+    }
+    importMetadata(prim, p);
+    importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
+                        report_, diag_);
+    if (usdPrimIsAnimated(prim)) recordAnimation(prim, p, parent, *type, outerUnits, unitScale, knownType);
+    for (const std::string& child : prim.children)
+      if (const ComposedPrim* c = composed_.prim(prim.path == "/" ? "/" + child : prim.path + "/" + child))
+        importPrim(*c, p, {}, scale);
+  }
+
+  // The prim's transform ops, schema attributes and geometry: all that its
+  // time samples can change. Returns the units scale for its children.
+  double importValues(const ComposedPrim& prim, Prim& p, const Prim& parent, PrimType type,
+                      const std::vector<XformOp>& outerUnits, double unitScale, bool knownType) {
     const Matrix4d parentWorld = stage_.worldMatrix(parent);
     std::vector<XformOp> ops = outerUnits;
     for (XformOp& op : usd_map::xformOpsOf(prim, parentWorld, diag_)) ops.push_back(std::move(op));
@@ -162,26 +183,37 @@ class Importer {
       for (XformOp& op : usd_map::unitsOps(prim.unitsChange->asset, prim.unitsChange->into)) ops.push_back(std::move(op));
       scale *= usd_map::unitsScale(prim.unitsChange->asset, prim.unitsChange->into);
     }
-    if (primTypeInfo(*type).xformable) p.xformOps() = std::move(ops);
+    if (primTypeInfo(type).xformable) p.xformOps() = std::move(ops);
     else if (!ops.empty() && !(ops.size() == outerUnits.size())) {
       report_.losses.note(UsdLossKind::Attribute, "xformOps of a " + prim.typeName, prim.loc, prim.path);
       warnOnce(prim.loc, "xform:" + prim.path, prim.path + ": a " + prim.typeName + " has no transform; its xform ops are ignored");
     }
+    if (type == PrimType::Material) return scale;
+    importAttributes(prim, p, type, scale, knownType);
+    if (type == PrimType::Mesh && !importMeshAsset(prim, p)) importMesh(prim, p);
+    return scale;
+  }
 
-    if (*type == PrimType::Material) {
-      importUsdMaterial(composed_, prim, p, diag_, report_);
-      importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_,
-                          options_, report_, diag_);
-      return;  // its shaders are the material's
-    }
-    importMetadata(prim, p);
-    importAttributes(prim, p, *type, scale, knownType);
-    if (*type == PrimType::Mesh && !importMeshAsset(prim, p)) importMesh(prim, p);
-    importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
-                        report_, diag_);
-    for (const std::string& child : prim.children)
-      if (const ComposedPrim* c = composed_.prim(prim.path == "/" ? "/" + child : prim.path + "/" + child))
-        importPrim(*c, p, {}, scale);
+  // The prim's time samples as stage animation (usd_animation.h): a second
+  // importer, defining no prim and reporting into its own diagnostics, maps
+  // the prim at each sampled time; errors of a sample are reported once.
+  void recordAnimation(const ComposedPrim& prim, const Prim& p, const Prim& parent, PrimType type,
+                       const std::vector<XformOp>& outerUnits, double unitScale, bool knownType) {
+    Diagnostics sampleDiag;
+    UsdImportReport sampleReport;
+    Importer sampler(composed_, stage_, catalog_, options_, sampleReport, sampleDiag);
+    sampler.sampling_ = true;
+    sampler.sourceRoot_ = sourceRoot_;
+    sampler.mountPath_ = mountPath_;
+    sampler.mountUnits_ = mountUnits_;
+    recordUsdPrimAnimation(prim, p, usdAnimationClock(composed_),
+                           [&](const ComposedPrim& at, Prim& into) {
+                             sampler.importValues(at, into, parent, type, outerUnits, unitScale, knownType);
+                           },
+                           stage_.animation());
+    std::set<std::string> said;
+    for (const Diagnostic& d : sampleDiag.all())
+      if (d.severity == Severity::Error && said.insert(d.format()).second) diag_.error(d.loc, "at a time sample: " + d.message);
   }
 
   // `knownType` false: the prim's type is already reported as dropped, and
@@ -309,6 +341,7 @@ class Importer {
     const size_t errorsBefore = diag_.errorCount();
     usd_map::importMeshGeometry(prim, p, &rest, diag_);
     if (diag_.errorCount() > errorsBefore) return;  // the mesh's problems said once, not again for each subset
+    if (sampling_) return;  // subsets are prims of their own, not animated (docs/usd.md)
     for (const auto& [subset, faces] : subsets) {
       Prim& s = stage_.definePrim(mapPath(subset->path), PrimType::Mesh);
       s.loc() = subset->loc;
@@ -332,6 +365,7 @@ class Importer {
   std::vector<XformOp> mountUnits_;  // the file's units into the stage's, on a mounted root
   std::vector<const ComposedPrim*> instancers_;  // PointInstancers, in import order
   std::set<std::string> warned_;
+  bool sampling_ = false;  // a sampler of time samples (recordAnimation): defines no prims
 };
 
 // What a USD stage does not say: one BasicWriter writing rgb, tight boxes
@@ -422,6 +456,9 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
     for (const std::string& script : scene.scripts) options.registerScript(script);
   Diagnostics diag;
   importUsdPrims(composed, "/", scene.stage, "/", catalog, options, report, diag);
+  // A stage that plays its own animation runs at its rate (USD's 24 when unsaid).
+  if (!scene.stage.animation().empty() && !composed.layerMetadata.count("timeCodesPerSecond"))
+    scene.stage.metadata().timeCodesPerSecond = usdAnimationClock(composed).timeCodesPerSecond;
   // A stage export-usd wrote says its own run settings; others get defaults.
   const bool exported = importUsdSceneSettings(composed, scene, diag);
   diag.throwIfErrors();

@@ -17,6 +17,7 @@ Stage& Stage::operator=(const Stage& other) {
   if (this == &other) return *this;
   Stage fresh;
   fresh.metadata_ = other.metadata_;
+  fresh.animation_ = other.animation_;
   other.traverse([&](const Prim& p) {
     Prim& copy = fresh.definePrim(p.path(), p.type());
     copy.attributes_ = p.attributes_;

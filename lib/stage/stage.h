@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "stage/prim.h"
+#include "stage/stage_animation.h"
 
 namespace sdg {
 
@@ -30,6 +31,10 @@ class Stage {
 
   StageMetadata& metadata() { return metadata_; }
   const StageMetadata& metadata() const { return metadata_; }
+  // The stage's own animation (a USD stage's time samples), played by the
+  // timeline; copied with the stage, not part of its state (operator==).
+  StageAnimation& animation() { return animation_; }
+  const StageAnimation& animation() const { return animation_; }
 
   // Defines a prim. The path must be valid, free, and its parent must exist
   // (the loader reports user mistakes before calling this; here they are
@@ -58,6 +63,7 @@ class Stage {
 
  private:
   StageMetadata metadata_;
+  StageAnimation animation_;
   std::unique_ptr<Prim> root_;
   std::unordered_map<std::string, std::unique_ptr<Prim>> owned_;
   std::unordered_map<std::string_view, Prim*> byPath_;

@@ -348,6 +348,7 @@ void Composer::composeProperties(ComposedPrim& prim, const PrimIndex& index, con
       detail::ResolvedValue resolved = detail::resolveAttributeValue(index, name, stage_.timeCode);
       prop.value = std::move(resolved.value);
       prop.fromTimeSamples = resolved.fromTimeSamples;
+      prop.samples = std::move(resolved.samples);
       if (resolved.layer) prop.valueLayer = resolved.layer->identifier;
       if (prop.value.kind == Kind::AssetPath)
         for (const std::string& asset : prop.value.strings)

@@ -17,6 +17,7 @@
 // themselves.
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,23 @@ struct LayerUnits {
   bool operator==(const LayerUnits& o) const { return metersPerUnit == o.metersPerUnit && upAxis == o.upAxis; }
 };
 
+// An attribute's time samples as the layer that wins wrote them, with the
+// layer offset that carries them onto the stage's time codes (sublayer and
+// reference offsets): valueAt(t) is what composing at time code t gives.
+// Kept so that a stage's own animation can be played without composing
+// again (scene_io/usd_animation.h).
+struct AttributeSamples {
+  std::shared_ptr<const TimeSamples> samples;  // in the layer's time
+  LayerOffset toStage;                         // stage time = offset + scale * layer time
+  // The samples' times on the stage's time line, ascending.
+  std::vector<double> stageTimes() const;
+  // Held before the first and after the last sample, interpolated between
+  // two where USD interpolates; Empty where a block (`None`) applies.
+  Value valueAt(double stageTime) const;
+  // More than one sample and not all alike: the value changes over time.
+  bool varies() const;
+};
+
 struct ComposedProperty {
   std::string name;
   bool isRelationship = false;
@@ -68,6 +86,8 @@ struct ComposedProperty {
   // opinion is a block (`None`).
   Value value;
   bool fromTimeSamples = false;  // `value` comes from time samples
+  // The samples `value` was taken from (null when it is a default or none).
+  std::shared_ptr<const AttributeSamples> samples;
   std::string valueLayer;        // the layer that holds `value` ("" when none)
   // Asset values (asset, asset[]): each path resolved against valueLayer
   // (a file path, or "pkg.usdz[inner]" inside a package).

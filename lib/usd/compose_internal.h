@@ -159,7 +159,11 @@ struct ResolvedValue {
   Value value;
   bool fromTimeSamples = false;
   const Layer* layer = nullptr;  // the layer that holds it
+  std::shared_ptr<const AttributeSamples> samples;  // when it comes from time samples
 };
+// Time samples at `time` (the layer's time): held outside them, linearly
+// interpolated between two where USD interpolates.
+Value sampleAt(const TimeSamples& samples, double time);
 ResolvedValue resolveAttributeValue(const PrimIndex& index, const std::string& propertyName, double time);
 
 // Linear interpolation between two samples where USD interpolates (floating

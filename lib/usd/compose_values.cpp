@@ -133,8 +133,6 @@ std::optional<Value> interpolate(const Value& a, const Value& b, double t) {
   return out;
 }
 
-namespace {
-
 // The value of time samples at `time` (layer time): held before the first
 // and after the last sample, interpolated between two (held when either is
 // a block or the type does not interpolate).
@@ -153,7 +151,36 @@ Value sampleAt(const TimeSamples& samples, double time) {
   return a;
 }
 
-}  // namespace
+
+}  // namespace sdg::usd::detail
+
+namespace sdg::usd {
+
+std::vector<double> AttributeSamples::stageTimes() const {
+  std::vector<double> out;
+  out.reserve(samples->times.size());
+  for (double t : samples->times) out.push_back(toStage.offset + toStage.scale * t);
+  if (toStage.scale < 0) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+Value AttributeSamples::valueAt(double stageTime) const {
+  const double layerTime = toStage.scale != 0 ? (stageTime - toStage.offset) / toStage.scale : stageTime;
+  Value v = detail::sampleAt(*samples, layerTime);
+  if (v.kind == Kind::ValueBlock) return {};
+  return v;
+}
+
+bool AttributeSamples::varies() const {
+  const auto& values = samples->values;
+  for (size_t i = 1; i < values.size(); ++i)
+    if (!(values[i] == values[0])) return true;
+  return false;
+}
+
+}  // namespace sdg::usd
+
+namespace sdg::usd::detail {
 
 ResolvedValue resolveAttributeValue(const PrimIndex& index, const std::string& propertyName, double time) {
   for (int n : index.order) {
@@ -166,15 +193,16 @@ ResolvedValue resolveAttributeValue(const PrimIndex& index, const std::string& p
       const Value* samples = spec->field(field::kTimeSamples);
       if (samples && samples->timeSamples && !samples->timeSamples->times.empty() &&
           samples->timeSamples->times.size() == samples->timeSamples->values.size()) {
-        LayerOffset offset = concat(node.offsetToRoot, node.stack->offsets[i]);
-        double layerTime = offset.scale != 0 ? (time - offset.offset) / offset.scale : time;
-        Value v = sampleAt(*samples->timeSamples, layerTime);
-        if (v.kind == Kind::ValueBlock) return {};
-        return {std::move(v), true, node.stack->layers[i]};
+        auto kept = std::make_shared<AttributeSamples>();
+        kept->samples = samples->timeSamples;
+        kept->toStage = concat(node.offsetToRoot, node.stack->offsets[i]);
+        // A sample blocked at `time` leaves no value now, but the samples
+        // are kept: the value may come back at another time.
+        return {kept->valueAt(time), true, node.stack->layers[i], std::move(kept)};
       }
       if (const Value* value = spec->field(field::kDefault)) {
         if (value->kind == Kind::ValueBlock) return {};
-        return {*value, false, node.stack->layers[i]};
+        return {*value, false, node.stack->layers[i], nullptr};
       }
     }
   }
