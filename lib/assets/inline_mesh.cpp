@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "assets/subdivision.h"
 #include "core/diagnostics.h"
 
 namespace sdg {
@@ -16,6 +17,16 @@ std::string hex(uint64_t h) {
 
 uint64_t hashOf(const Value& v) {
   return v.type() == ValueType::IntArray ? v.get<IntArray>().hash() : v.get<FloatArray>().hash();
+}
+
+// The part of the key a refined surface adds: its level, scheme and tags.
+std::string subdivisionKey(const SubdivisionSurface& s) {
+  std::string key = ":subdiv" + std::to_string(s.level) + s.scheme + "," + s.interpolateBoundary + "," +
+                    s.faceVaryingLinearInterpolation + "," + s.triangleSubdivisionRule + ",";
+  for (const Value* v : {&s.creaseIndices, &s.creaseLengths, &s.creaseSharpnesses, &s.cornerIndices,
+                         &s.cornerSharpnesses})
+    key += hex(hashOf(*v));
+  return key;
 }
 
 size_t itemsOf(const Value& v) { return v.get<FloatArray>().size() / size_t(arrayWidth(v.type())); }
@@ -42,10 +53,13 @@ std::string InlineMesh::id() const {
   // Only meshes with colours grow the key, so every other key stays as it was.
   if (displayColor) key += "c" + hex(hashOf(*displayColor));
   if (displayOpacity) key += "o" + hex(hashOf(*displayOpacity));
-  return key + (flat ? "f" : "s") + (leftHanded ? "l" : "r");
+  if (!holeIndices.get<IntArray>().items().empty()) key += "h" + hex(hashOf(holeIndices));
+  key += (flat ? "f" : "s");
+  key += (leftHanded ? "l" : "r");
+  return refined() ? key + subdivisionKey(subdivision) : key;
 }
 
-std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim) {
+std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim, int subdivisionLevel) {
   const Attribute* points = prim.findAttribute("points");
   if (!points) return nullptr;
   auto mesh = std::make_shared<InlineMesh>();
@@ -56,8 +70,23 @@ std::shared_ptr<const InlineMesh> inlineMeshOf(const Prim& prim) {
   if (const Attribute* a = prim.findAttribute("primvars:st")) mesh->st = a->value;
   if (const Attribute* a = prim.findAttribute("primvars:displayColor:faceVarying")) mesh->displayColor = a->value;
   if (const Attribute* a = prim.findAttribute("primvars:displayOpacity:faceVarying")) mesh->displayOpacity = a->value;
-  mesh->flat = prim.getString("subdivisionScheme") == "none";
+  const std::string& scheme = prim.getString("subdivisionScheme");
+  mesh->flat = scheme == "none";
   mesh->leftHanded = prim.getString("orientation") == "leftHanded";
+  mesh->holeIndices = *prim.value("holeIndices");
+  if (scheme != "none" && subdivisionLevel > 0) {
+    SubdivisionSurface& s = mesh->subdivision;
+    s.scheme = scheme;
+    s.level = subdivisionLevel;
+    s.interpolateBoundary = prim.getString("interpolateBoundary");
+    s.faceVaryingLinearInterpolation = prim.getString("faceVaryingLinearInterpolation");
+    s.triangleSubdivisionRule = prim.getString("triangleSubdivisionRule");
+    s.creaseIndices = *prim.value("creaseIndices");
+    s.creaseLengths = *prim.value("creaseLengths");
+    s.creaseSharpnesses = *prim.value("creaseSharpnesses");
+    s.cornerIndices = *prim.value("cornerIndices");
+    s.cornerSharpnesses = *prim.value("cornerSharpnesses");
+  }
   return mesh;
 }
 
@@ -102,11 +131,21 @@ std::string inlineMeshProblem(const InlineMesh& mesh, std::string* attribute) {
     if (*value && itemsOf(**value) != indices.size())
       return at(name, std::string(name) + " has " + std::to_string(itemsOf(**value)) +
                           " items; expected one per face-vertex (" + std::to_string(indices.size()) + ")");
+  const auto holes = mesh.holeIndices.get<IntArray>().items();
+  for (size_t i = 0; i < holes.size(); ++i)
+    if (holes[i] < 0 || size_t(holes[i]) >= counts.size())
+      return at("holeIndices", "holeIndices[" + std::to_string(i) + "] is " + std::to_string(holes[i]) +
+                                   ", outside the " + std::to_string(counts.size()) + " faces");
+  if (mesh.refined()) return subdivisionProblem(mesh);
   return "";
 }
 
-MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPath) {
-  if (std::string problem = inlineMeshProblem(mesh); !problem.empty()) throw RunError(primPath + ": " + problem);
+MeshData triangulateInlineMesh(const InlineMesh& authored, const std::string& primPath) {
+  if (std::string problem = inlineMeshProblem(authored); !problem.empty()) throw RunError(primPath + ": " + problem);
+  // A subdivision surface: its refined polygons (no normals: computed smooth below).
+  std::optional<InlineMesh> refined;
+  if (authored.refined()) refined = refineSubdivisionSurface(authored, primPath);
+  const InlineMesh& mesh = refined ? *refined : authored;
   const size_t points = itemsOf(mesh.points);
   const auto counts = mesh.faceVertexCounts.get<IntArray>().items();
   const auto indices = mesh.faceVertexIndices.get<IntArray>().items();
@@ -115,12 +154,16 @@ MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPa
   const bool normalsPerCorner = mesh.normals && itemsOf(*mesh.normals) == indices.size();
   const bool stPerCorner = mesh.st && itemsOf(*mesh.st) == indices.size();
 
+  std::vector<bool> hole(counts.size(), false);
+  for (int32_t f : mesh.holeIndices.get<IntArray>().items()) hole[size_t(f)] = true;
+
   // Smooth normals where none are given: area-weighted per point.
   std::vector<Vec3f> smooth;
   if (!mesh.normals && !mesh.flat) {
     smooth.assign(points, Vec3f::Zero());
     size_t first = 0;
-    for (int32_t c : counts) {
+    for (size_t f = 0; f < counts.size(); ++f) {
+      const int32_t c = hole[f] ? 0 : counts[f];
       for (int32_t k = 1; k + 1 < c; ++k) {
         const size_t a = size_t(indices[first]), b = size_t(indices[first + size_t(k)]),
                      d = size_t(indices[first + size_t(k) + 1]);
@@ -130,15 +173,16 @@ MeshData triangulateInlineMesh(const InlineMesh& mesh, const std::string& primPa
         smooth[b] += n;
         smooth[d] += n;
       }
-      first += size_t(c);
+      first += size_t(counts[f]);
     }
     for (Vec3f& n : smooth) n = n.norm() > 0 ? Vec3f(n.normalized()) : Vec3f(0, 0, 1);
   }
 
   MeshData out;
   size_t first = 0;
-  for (int32_t c : counts) {
-    if (c >= 3) {
+  for (size_t f = 0; f < counts.size(); ++f) {
+    const int32_t c = counts[f];
+    if (c >= 3 && !hole[f]) {
       // One vertex per corner of the face, then a fan.
       const uint32_t base = uint32_t(out.positions.size());
       Vec3f faceNormal(0, 0, 0);

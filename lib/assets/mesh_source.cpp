@@ -12,14 +12,14 @@ char axisOf(const Prim& prim) { return prim.getString("axis")[0]; }
 
 }  // namespace
 
-MeshKey meshKeyOf(const Prim& prim) {
+MeshKey meshKeyOf(const Prim& prim, int subdivisionLevel) {
   MeshKey key;
   key.shape = prim.type();
   switch (prim.type()) {
     case PrimType::Mesh:
       key.asset = prim.getString("asset");
       key.submesh = prim.getString("submesh");
-      if (key.asset.empty()) key.inlineMesh = inlineMeshOf(prim);
+      if (key.asset.empty()) key.inlineMesh = inlineMeshOf(prim, subdivisionLevel);
       break;
     case PrimType::Cube: key.a = prim.getDouble("size"); break;
     case PrimType::Sphere: key.a = prim.getDouble("radius"); break;

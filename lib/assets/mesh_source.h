@@ -22,8 +22,10 @@ struct MeshKey {
   std::string id() const;           // a stable cache key
 };
 
-// The key of a geometry prim (Mesh, Cube, Sphere, Cylinder, Cone, Capsule, Plane).
-MeshKey meshKeyOf(const Prim& prim);
+// The key of a geometry prim (Mesh, Cube, Sphere, Cylinder, Cone, Capsule,
+// Plane); a subdivision surface is refined `subdivisionLevel` times (the
+// stage's: StageMetadata::subdivisionLevel).
+MeshKey meshKeyOf(const Prim& prim, int subdivisionLevel);
 
 // Generates or loads the mesh of a key; a missing or unreadable file is a
 // RunError naming `primPath` and every place searched.

@@ -169,7 +169,7 @@ class VolumeStackRandomizer final : public Behavior {
         assetPrim.semantics()["class"] = {entry.label};
         setPose(assetPrim, atSurface);
         a.setupPose = atSurface;
-        a.plan.collider = ColliderCache::shared().get(meshKeyOf(assetPrim), *context().assets, a.plan.path);
+        a.plan.collider = ColliderCache::shared().get(meshKeyOf(assetPrim, stage().metadata().subdivisionLevel), *context().assets, a.plan.path);
         a.boundsVolume = worldBoundsVolume(*a.plan.collider, s.geometry.rotation);
         s.assets.push_back(std::move(a));
       }
@@ -315,7 +315,7 @@ class VolumeStackRandomizer final : public Behavior {
 
   StackSurface surfaceGeometry(const Prim& surface, double dropHeight) const {
     Decomposed d = decompose(stage().worldMatrix(surface));
-    auto collider = ColliderCache::shared().get(meshKeyOf(surface), *context().assets, surface.path());
+    auto collider = ColliderCache::shared().get(meshKeyOf(surface, stage().metadata().subdivisionLevel), *context().assets, surface.path());
     StackSurface g;
     g.path = surface.path();
     g.origin = d.translation;

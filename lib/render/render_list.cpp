@@ -185,7 +185,7 @@ RenderList buildRenderList(const Stage& stage) {
       if (invisible(prim)) return;
       RenderItem item;
       item.primPath = prim.path();
-      item.mesh = meshKeyOf(prim);
+      item.mesh = meshKeyOf(prim, stage.metadata().subdivisionLevel);
       item.meshId = item.mesh.id();
       item.worldFromLocal = stage.worldMatrix(prim);
       item.material = materialOf(stage, prim);

@@ -221,6 +221,7 @@ LoadedScene loadUsdStageForRun(const SceneRequest& request) {
   attacher.sayNote();
   Diagnostics diag;
   applyOverrides(request.overrides, registry.catalog(), scene, diag);
+  applyRenderSettingsToStage(scene);
   if (!diag.hasErrors()) validateScene(scene, registry.catalog(), diag);
   diag.throwIfErrors();
   scripting::setHookTimeout(request.hookTimeout.value_or(scene.run.get("hook_timeout").get<double>()));

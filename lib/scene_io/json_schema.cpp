@@ -65,7 +65,16 @@ Json attributeSchema(const AttributeSpec& spec) {
   if (!spec.doc.empty()) s["description"] = spec.doc;
   Json t = typeSchema(spec.type);
   for (auto& [k, v] : t.items()) s[k] = v;
-  if (!spec.allowedTokens.empty()) s["enum"] = spec.allowedTokens;
+  if (!spec.allowedTokens.empty()) {
+    s["enum"] = spec.allowedTokens;
+    // A token that is a whole number (render.subdivision_level: none, 1, 2,
+    // ...) reads from YAML written bare too: the schema takes both spellings.
+    for (const std::string& token : spec.allowedTokens)
+      if (!token.empty() && token.find_first_not_of("0123456789") == std::string::npos) {
+        s["type"] = Json::array({"string", "integer"});
+        s["enum"].push_back(std::stoi(token));
+      }
+  }
   if (spec.minimum) {
     if (s["type"] == "array" && s["items"].is_object()) s["items"]["minimum"] = *spec.minimum;
     else s["minimum"] = *spec.minimum;

@@ -85,6 +85,11 @@ struct Scene {
   }
 };
 
+// Copies the render settings the stage's geometry depends on
+// (render.subdivision_level) into its metadata; the loaders call it once
+// the settings are final (after --set).
+void applyRenderSettingsToStage(Scene& scene);
+
 // The option tables, shared by the loader, the writer and the JSON Schema.
 std::span<const AttributeSpec> stageOptionSpecs();
 std::span<const AttributeSpec> renderOptionSpecs();

@@ -207,6 +207,7 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
 
   // Overrides apply to a scene that parsed; their own problems join the list.
   if (!diag.hasErrors()) applyOverrides(overrides, catalog, scene, diag);
+  applyRenderSettingsToStage(scene);
   if (!diag.hasErrors()) validateScene(scene, catalog, diag);
   diag.throwIfErrors();
   return scene;

@@ -26,7 +26,7 @@ void validateCamera(const Prim& prim, Diagnostics& diag) {
 void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& catalog, Diagnostics& diag) {
   if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
   if (prim.type() == PrimType::Mesh && prim.getString("asset").empty()) {
-    if (auto mesh = inlineMeshOf(prim)) {
+    if (auto mesh = inlineMeshOf(prim, stage.metadata().subdivisionLevel)) {
       std::string attribute;
       if (std::string problem = inlineMeshProblem(*mesh, &attribute); !problem.empty())
         diag.error(attributeLoc(prim, attribute), prim.path() + ": " + problem);

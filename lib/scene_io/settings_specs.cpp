@@ -50,6 +50,11 @@ const std::vector<AttributeSpec>& renderSpecs() {
       atLeast(1, option("max_bounces", Value::makeUInt(8), "Path-traced scattering events whose light is counted.")),
       option("denoise", Value::makeBool(false),
              "Filter path-traced colour with the edge-aware denoiser (guided by albedo, normals, depth, instances)."),
+      tokens(option("subdivision_level", Value::makeToken("2"),
+                    "Uniform refinements of subdivision surfaces (a Mesh whose subdivisionScheme is catmullClark, "
+                    "loop or bilinear), each splitting every face in four, with OpenSubdiv; none draws the "
+                    "authored polygons."),
+             {"none", "1", "2", "3", "4", "5", "6"}),
       tokens(option("backend", Value::makeToken("auto"),
                     "GL back end: osmesa (CPU), egl (GPU, headless) or auto (EGL GPU when present, else OSMesa)."),
              {"auto", "osmesa", "egl"}),
@@ -193,6 +198,11 @@ const SourceLoc* OptionSet::locOf(std::string_view name) const {
 
 Scene::Scene()
     : render(renderOptionSpecs()), capture(captureOptionSpecs()), physics(physicsOptionSpecs()), run(runOptionSpecs()) {}
+
+void applyRenderSettingsToStage(Scene& scene) {
+  const std::string& level = scene.render.getString("subdivision_level");
+  scene.stage.metadata().subdivisionLevel = level == "none" ? 0 : std::stoi(level);
+}
 
 std::span<const AttributeSpec> stageOptionSpecs() { return stageSpecs(); }
 std::span<const AttributeSpec> renderOptionSpecs() { return renderSpecs(); }

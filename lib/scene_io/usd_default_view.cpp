@@ -17,7 +17,7 @@ constexpr double kPi = 3.14159265358979323846;
 void extendByPrim(const Stage& stage, const Prim& prim, Eigen::AlignedBox3d& box) {
   if (!primTypeInfo(prim.type()).gprim) return;
   if (const Attribute* vis = prim.findAttribute("visibility"); vis && vis->value.get<std::string>() == "invisible") return;
-  const MeshKey key = meshKeyOf(prim);
+  const MeshKey key = meshKeyOf(prim, stage.metadata().subdivisionLevel);
   const Matrix4d world = stage.worldMatrix(prim);
   if (key.inlineMesh) {
     // Every point, transformed: exact, and cheaper than triangulating.

@@ -227,7 +227,9 @@ class Exporter {
   }
   void stageAttribute(const std::string& prim, const std::string& name, const Value& v, bool custom) {
     UsdTyped t = toUsd(v, assets_);
-    bool uniform = name == "doubleSided" || name == "axis" || name == "purpose";
+    bool uniform = name == "doubleSided" || name == "axis" || name == "purpose" || name == "subdivisionScheme" ||
+                   name == "interpolateBoundary" || name == "faceVaryingLinearInterpolation" ||
+                   name == "triangleSubdivisionRule" || name == "orientation";
     attribute(prim, name, std::move(t.value), t.typeName, custom,
               uniform ? usd::Variability::Uniform : usd::Variability::Varying);
   }
@@ -394,7 +396,7 @@ class Exporter {
 
   // The triangulated geometry of each distinct file, once, under /Prototypes.
   void writeMeshReference(const Prim& prim, Spec& spec) {
-    MeshKey key = meshKeyOf(prim);
+    MeshKey key = meshKeyOf(prim, scene_.stage.metadata().subdivisionLevel);
     std::string id = key.id();
     auto found = prototypes_.find(id);
     if (found == prototypes_.end()) {

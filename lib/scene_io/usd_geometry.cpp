@@ -168,6 +168,7 @@ void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const st
       else
         stagePrim.setAttribute(token, Value::makeToken(v)).loc = p->loc;
     }
+  importSubdivisionTags(mesh, stagePrim, faces, diag);
 }
 
 }  // namespace sdg::usd_map

@@ -347,7 +347,8 @@ class Importer {
       s.loc() = subset->loc;
       for (const auto& [name, attr] : p.attributes())
         if (name == "doubleSided" || name == "primvars:displayColor" || name == "subdivisionScheme" ||
-            name == "orientation")
+            name == "orientation" || name == "interpolateBoundary" || name == "faceVaryingLinearInterpolation" ||
+            name == "triangleSubdivisionRule")
           s.setAttribute(name, attr.value).loc = attr.loc;
       usd_map::importMeshGeometry(prim, s, &faces, diag_);
       importUsdPrimLabels(composed_, *subset, s, [this](const std::string& x) { return mapPath(x); }, catalog_,

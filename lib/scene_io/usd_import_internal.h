@@ -50,4 +50,9 @@ bool importDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProp
 void importMeshGeometry(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<int32_t>* faces,
                         Diagnostics& diag);
 
+// Its subdivision arrays (usd_subdivision.cpp): creases, corners, and
+// holeIndices renumbered to the kept `faces` (authored face indices).
+void importSubdivisionTags(const usd::ComposedPrim& mesh, Prim& stagePrim, const std::vector<size_t>& faces,
+                           Diagnostics& diag);
+
 }  // namespace sdg::usd_map

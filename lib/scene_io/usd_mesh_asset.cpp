@@ -79,7 +79,8 @@ MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh) {
   stage.traverse([&](const Prim& prim) {
     if (prim.type() != PrimType::Mesh) return;
     if (!submesh.empty() && prim.path() != submesh && !prim.path().starts_with(submesh + "/")) return;
-    std::shared_ptr<const InlineMesh> mesh = inlineMeshOf(prim);
+    // Drawn as authored: a mesh file's key carries no subdivision level.
+    std::shared_ptr<const InlineMesh> mesh = inlineMeshOf(prim, 0);
     if (!mesh) return;
     append(out, triangulateInlineMesh(*mesh, path + " " + prim.path()), stage.worldMatrix(prim), partFor(stage, prim));
   });

@@ -505,7 +505,7 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
             const Prim& p = h.prim();
             if (!p.typeInfo().gprim) return py::none();
             if (!h.ctx->assets) throw py::value_error(h.path + ": no asset resolver to load its geometry");
-            return py::cast(ColliderRef{ColliderCache::shared().get(meshKeyOf(p), *h.ctx->assets, h.path)});
+            return py::cast(ColliderRef{ColliderCache::shared().get(meshKeyOf(p, h.ctx->liveStage().metadata().subdivisionLevel), *h.ctx->assets, h.path)});
           },
           "The prim's collider (its bounds: ((min x, y, z), (max x, y, z)) in its frame), or None.")
       .def_property_readonly("semantics",

@@ -102,7 +102,25 @@ std::vector<PrimTypeInfo> buildTable() {
                                      "Inline geometry: an opacity per face-vertex, replacing primvars:displayOpacity "
                                      "(interpolated, drawn where at least 0.5; used when no material is bound)."),
                                 tokenAttr("subdivisionScheme", "catmullClark", {"catmullClark", "loop", "bilinear", "none"},
-                                          "Drawn as the control cage; 'none' makes computed normals faceted, the others smooth."),
+                                          "Inline geometry: a subdivision surface, refined to render.subdivision_level "
+                                          "with smooth normals; 'none' draws the polygons as authored with faceted "
+                                          "computed normals."),
+                                tokenAttr("interpolateBoundary", "edgeAndCorner", {"none", "edgeOnly", "edgeAndCorner"},
+                                          "Subdivision: how boundary edges and corners are kept."),
+                                tokenAttr("faceVaryingLinearInterpolation", "cornersPlus1",
+                                          {"none", "cornersOnly", "cornersPlus1", "cornersPlus2", "boundaries", "all"},
+                                          "Subdivision: where texture coordinates are refined linearly."),
+                                tokenAttr("triangleSubdivisionRule", "catmullClark", {"catmullClark", "smooth"},
+                                          "Subdivision: the weights catmullClark gives triangles."),
+                                attr("creaseIndices", Value::makeIntArray({}),
+                                     "Subdivision: the points of the creases, crease after crease."),
+                                attr("creaseLengths", Value::makeIntArray({}), "Subdivision: points of each crease."),
+                                attr("creaseSharpnesses", Value::makeFloatArray(ValueType::FloatArray, {}),
+                                     "Subdivision: sharpness of each crease or each crease edge; 10 or more is infinitely sharp."),
+                                attr("cornerIndices", Value::makeIntArray({}), "Subdivision: points made sharp corners."),
+                                attr("cornerSharpnesses", Value::makeFloatArray(ValueType::FloatArray, {}),
+                                     "Subdivision: sharpness of each corner; 10 or more is infinitely sharp."),
+                                attr("holeIndices", Value::makeIntArray({}), "Inline geometry: faces left out (holes)."),
                                 tokenAttr("orientation", "rightHanded", {"rightHanded", "leftHanded"},
                                           "Winding of the front faces: counter-clockwise (rightHanded) or clockwise.")})});
   t.push_back({PrimType::Cube, "Cube", true, true, false, "An axis-aligned cube centred at the origin.",

@@ -18,6 +18,10 @@ struct StageMetadata {
   double timeCodesPerSecond = 60.0;
   double metersPerUnit = 1.0;
   std::string upAxis = "Z";
+  // render.subdivision_level (0 for none), copied here once the settings are
+  // final (applyRenderSettingsToStage): every reader of a prim's geometry
+  // (renderers, colliders, BOP models) refines subdivision surfaces alike.
+  int subdivisionLevel = 2;
   bool operator==(const StageMetadata&) const = default;
 };
 

@@ -84,7 +84,7 @@ struct Obb {
 };
 
 Obb obbOf(const Stage& stage, const Prim& prim, const AssetResolver& assets) {
-  auto collider = ColliderCache::shared().get(meshKeyOf(prim), assets, prim.path());
+  auto collider = ColliderCache::shared().get(meshKeyOf(prim, stage.metadata().subdivisionLevel), assets, prim.path());
   Matrix4d m = stage.worldMatrix(prim);
   Obb box;
   box.axes = m.topLeftCorner<3, 3>();

@@ -114,7 +114,7 @@ TEST_CASE("export-usd: every_type.yaml composes to the stage's prims, transforms
   REQUIRE(prop);
   const usd::ComposedProperty* points = prop->property("points");
   REQUIRE(points);
-  MeshData mesh = meshDataFor(meshKeyOf(*stage.find("/World/Shapes/Prop")), e.loaded.assets, "/World/Shapes/Prop");
+  MeshData mesh = meshDataFor(meshKeyOf(*stage.find("/World/Shapes/Prop"), stage.metadata().subdivisionLevel), e.loaded.assets, "/World/Shapes/Prop");
   CHECK(points->value.elementCount() == mesh.positions.size());
   CHECK(prop->property("faceVertexIndices")->value.elementCount() == mesh.indices.size());
   CHECK(prop->property("normals")->value.elementCount() == mesh.positions.size());

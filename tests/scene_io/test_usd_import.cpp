@@ -34,7 +34,7 @@ bool near(const Vec3d& a, const Vec3d& b) { return (a - b).norm() < 1e-5; }
 // World bounds of a geometry prim, from its triangulated mesh.
 Eigen::AlignedBox3d worldBounds(const Stage& stage, const std::string& path) {
   const Prim& prim = *stage.find(path);
-  MeshData mesh = meshDataFor(meshKeyOf(prim), AssetResolver{}, path);
+  MeshData mesh = meshDataFor(meshKeyOf(prim, stage.metadata().subdivisionLevel), AssetResolver{}, path);
   const Matrix4d m = stage.worldMatrix(prim);
   Eigen::AlignedBox3d box;
   for (const Vec3f& p : mesh.positions) box.extend((m * p.cast<double>().homogeneous()).head<3>());
@@ -62,8 +62,8 @@ TEST_CASE("usd import: a cube, a mesh, a camera and lights make a runnable scene
   CHECK(scene.writers[0].options.getBool("rgb"));
   // The ground is an inline mesh: two triangles spanning 6 x 6 m.
   const Prim& ground = *scene.stage.find("/World/Ground");
-  REQUIRE(inlineMeshOf(ground));
-  MeshData mesh = meshDataFor(meshKeyOf(ground), AssetResolver{}, ground.path());
+  REQUIRE(inlineMeshOf(ground, scene.stage.metadata().subdivisionLevel));
+  MeshData mesh = meshDataFor(meshKeyOf(ground, scene.stage.metadata().subdivisionLevel), AssetResolver{}, ground.path());
   CHECK(mesh.triangleCount() == 2);
   CHECK(mesh.bounds.sizes().isApprox(Eigen::Vector3f(6, 6, 0)));
   CHECK(mesh.uvs[2].isApprox(Eigen::Vector2f(1, 1)));

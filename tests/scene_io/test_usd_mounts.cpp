@@ -23,7 +23,7 @@ LoadedScene loadMounts(const std::vector<std::string>& overrides = {}) {
 
 Eigen::AlignedBox3d worldBounds(const LoadedScene& loaded, const std::string& path) {
   const Prim& prim = *loaded.scene.stage.find(path);
-  MeshData mesh = meshDataFor(meshKeyOf(prim), loaded.assets, path);
+  MeshData mesh = meshDataFor(meshKeyOf(prim, loaded.scene.stage.metadata().subdivisionLevel), loaded.assets, path);
   const Matrix4d m = loaded.scene.stage.worldMatrix(prim);
   Eigen::AlignedBox3d box;
   for (const Vec3f& p : mesh.positions) box.extend((m * p.cast<double>().homogeneous()).head<3>());
@@ -88,7 +88,7 @@ TEST_CASE("usd mounts: --set chooses a variant of a mounted prim by its path in 
 TEST_CASE("usd mounts: a USD file as a Mesh's asset, whole or one prim's subtree", "[usd_import][mounts]") {
   const LoadedScene loaded = loadMounts();
   const Prim& lamp = *loaded.scene.stage.find("/World/LampMesh");
-  const MeshData mesh = meshDataFor(meshKeyOf(lamp), loaded.assets, lamp.path());
+  const MeshData mesh = meshDataFor(meshKeyOf(lamp, loaded.scene.stage.metadata().subdivisionLevel), loaded.assets, lamp.path());
   CHECK(mesh.triangleCount() == 6);  // the shade's 4 and the post's quad
   REQUIRE(mesh.parts.size() == 2);
   CHECK(mesh.parts[0].baseColor.isApprox(Vec3f(0.9f, 0.1f, 0.1f)));  // the shade's bound material
@@ -99,7 +99,7 @@ TEST_CASE("usd mounts: a USD file as a Mesh's asset, whole or one prim's subtree
   const Eigen::AlignedBox3d placed = worldBounds(loaded, "/World/LampMesh");
   CHECK(near(placed.min(), Vec3d(-2.5, -0.5, 0.0)));
   const Prim& shade = *loaded.scene.stage.find("/World/ShadeOnly");
-  CHECK(meshDataFor(meshKeyOf(shade), loaded.assets, shade.path()).triangleCount() == 4);
+  CHECK(meshDataFor(meshKeyOf(shade, loaded.scene.stage.metadata().subdivisionLevel), loaded.assets, shade.path()).triangleCount() == 4);
   // A Y-up centimetre file comes out in Z-up metres; its GeomSubset is a part of its own.
   const MeshData chair = loadUsdMeshAsset(kDir + "chair_ycm.usda", "");
   CHECK(chair.triangleCount() == 12);
@@ -131,7 +131,7 @@ TEST_CASE("usd mounts: bad references and assets are located errors", "[usd_impo
              Catch::Contains("variant set 'finish' has no variant 'shiny'"));
   // A USD mesh asset that names no mesh.
   const LoadedScene loaded = loadMounts();
-  MeshKey key = meshKeyOf(*loaded.scene.stage.find("/World/ShadeOnly"));
+  MeshKey key = meshKeyOf(*loaded.scene.stage.find("/World/ShadeOnly"), loaded.scene.stage.metadata().subdivisionLevel);
   key.submesh = "/Lamp/Looks";
   CHECK_THROWS_WITH(meshDataFor(key, loaded.assets, "/World/ShadeOnly"),
                     Catch::Contains("no Mesh prim with faces at or under /Lamp/Looks"));
