@@ -42,6 +42,7 @@ set(SDG_PLUGIN_HEADERS
   stage/prim_types.h
   stage/shared_array.h
   stage/stage.h
+  stage/stage_animation.h
   stage/value.h
   stage/xform.h)
 set(SDG_INSTALL_INCLUDEDIR ${CMAKE_INSTALL_INCLUDEDIR}/sdgbehave)

@@ -20,6 +20,7 @@
 #include "scene_io/usd_point_instancer.h"
 #include "scene_io/usd_prim_labels.h"
 #include "scene_io/usd_settings.h"
+#include "scene_io/usd_skel.h"
 #include "scene_io/usd_value_node.h"
 #include "stage/path.h"
 #include "usd/layer_io.h"
@@ -34,13 +35,18 @@ using usd::ComposedProperty;
 // types below map to Xform (a group) with a warning naming the type.
 std::optional<PrimType> stageTypeFor(const std::string& typeName) {
   if (typeName.empty()) return PrimType::Xform;
+  // UsdSkel's transformable prims: groups on the stage (the skinning poses
+  // their meshes, usd_skel.h).
+  if (typeName == "SkelRoot" || typeName == "Skeleton") return PrimType::Xform;
   return primTypeFromName(typeName);
 }
 
 // Types whose prims are handled by their parent (GeomSubset by its Mesh,
-// shaders by their Material) or that carry nothing to draw.
+// shaders by their Material, a skeleton's animation by the skinning) or
+// that carry nothing to draw.
 bool handledElsewhere(const std::string& typeName) {
-  return typeName == "GeomSubset" || typeName == "Shader" || typeName == "NodeGraph";
+  return typeName == "GeomSubset" || typeName == "Shader" || typeName == "NodeGraph" || typeName == "SkelAnimation" ||
+         typeName == "BlendShape";
 }
 
 // Schema attributes are authored in USD under the same names; lights of
@@ -62,7 +68,7 @@ bool quietlyIgnored(const std::string& name) {
   if (std::find(kNames.begin(), kNames.end(), name) != kNames.end()) return true;
   for (const char* prefix : {"xformOp:", "primvars:", "semantic:", "semantics:", "omni:", "physics:", "physx",
                              "material:binding", "exposedVar:", "sdgbehave:", "inputs:", "outputs:", "info:", "shaping:",
-                             "shadow:", "light:", "collection:", "proxy", "ui:"})
+                             "shadow:", "light:", "collection:", "proxy", "ui:", "skel:"})
     if (name.rfind(prefix, 0) == 0) return true;
   return false;
 }
@@ -84,6 +90,7 @@ class Importer {
     if (sourceRoot == "/") {
       for (const std::string& path : composed_.rootPrims())
         if (const ComposedPrim* prim = composed_.prim(path)) importPrim(*prim, stage_.pseudoRoot(), rootUnits, scale);
+      poseSkinnedMeshes();
       expandInstancers();
       return;
     }
@@ -97,6 +104,7 @@ class Importer {
     Prim* parent = stage_.find(std::string(path::parent(mountPath)));
     mountUnits_ = rootUnits;
     importPrim(*prim, *parent, {}, scale);
+    poseSkinnedMeshes();
     expandInstancers();
   }
 
@@ -128,6 +136,24 @@ class Importer {
   void expandInstancers() {
     expandPointInstancers(
         instancers_, stage_, [this](const std::string& s) { return mapPath(s); },
+        [this](const SourceLoc& loc, const std::string& key, const std::string& m) { warnOnce(loc, key, m); }, diag_);
+  }
+
+  // Skinned meshes (usd_skel.h) once every skeleton is on the stage, before
+  // instancers copy any of them.
+  void poseSkinnedMeshes() {
+    if (skinned_.empty()) return;
+    std::vector<UsdSkinnedMesh> meshes;
+    for (const ComposedPrim* mesh : skinned_) {
+      UsdSkinnedMesh m{mesh, {mapPath(mesh->path)}};
+      for (const std::string& child : mesh->children)
+        if (const ComposedPrim* c = composed_.prim(mesh->path + "/" + child); c && c->typeName == "GeomSubset")
+          m.stagePaths.push_back(mapPath(c->path));
+      meshes.push_back(std::move(m));
+    }
+    poseUsdSkinnedMeshes(
+        composed_, meshes, [this](const std::string& s) { return mapPath(s); }, usdAnimationClock(composed_), stage_,
+        report_.losses,
         [this](const SourceLoc& loc, const std::string& key, const std::string& m) { warnOnce(loc, key, m); }, diag_);
   }
 
@@ -163,6 +189,7 @@ class Importer {
     importMetadata(prim, p);
     importUsdPrimLabels(composed_, prim, p, [this](const std::string& s) { return mapPath(s); }, catalog_, options_,
                         report_, diag_);
+    if (*type == PrimType::Mesh && prim.property("primvars:skel:jointIndices")) skinned_.push_back(&prim);
     if (usdPrimIsAnimated(prim)) recordAnimation(prim, p, parent, *type, outerUnits, unitScale, knownType);
     for (const std::string& child : prim.children)
       if (const ComposedPrim* c = composed_.prim(prim.path == "/" ? "/" + child : prim.path + "/" + child))
@@ -229,6 +256,7 @@ class Importer {
       if (usd_map::importDisplayPrimvar(prim, prop, type, p, diag_)) continue;
       const AttributeSpec* spec = schemaSpecFor(type, prop.name);
       if (isPointInstancer(prim) && isPointInstancerAttribute(prop.name)) continue;
+      if (prim.typeName == "Skeleton" && isSkeletonAttribute(prop.name)) continue;
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
       if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
         if (!spec && !quietlyIgnored(prop.name)) {
@@ -365,6 +393,7 @@ class Importer {
   std::string sourceRoot_, mountPath_;
   std::vector<XformOp> mountUnits_;  // the file's units into the stage's, on a mounted root
   std::vector<const ComposedPrim*> instancers_;  // PointInstancers, in import order
+  std::vector<const ComposedPrim*> skinned_;     // Meshes with skel:jointIndices, in import order
   std::set<std::string> warned_;
   bool sampling_ = false;  // a sampler of time samples (recordAnimation): defines no prims
 };

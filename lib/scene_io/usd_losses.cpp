@@ -81,10 +81,10 @@ std::vector<DroppedWarning> UsdLosses::warnings() const {
 
 bool appliedSchemaChangesAppearance(const std::string& schema, bool onLight) {
   // Schemas that change the look and that nothing here reads; every other
-  // schema is either read (MaterialBindingAPI, SemanticsAPI, ...) or has no
+  // schema is either read (MaterialBindingAPI, SemanticsAPI, SkelBindingAPI, ...) or has no
   // visible effect (physics, collections, tools' own tags).
-  static constexpr std::array<std::string_view, 9> kVisible = {
-      "ShapingAPI", "ShadowAPI", "LightListAPI", "SkelBindingAPI", "MotionAPI",
+  static constexpr std::array<std::string_view, 8> kVisible = {
+      "ShapingAPI", "ShadowAPI", "LightListAPI", "MotionAPI",
       "VisibilityAPI", "GeomModelAPI", "OmniLensDistortion", "VolumeLightAPI"};
   const std::string_view name = std::string_view(schema).substr(0, schema.find(':'));  // multiple-apply: "X:instance"
   // A light's own LightAPI is what makes it a light; on geometry it makes a mesh light.

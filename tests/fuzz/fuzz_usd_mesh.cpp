@@ -144,7 +144,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // triangulation checks the arrays itself.
   stage.traverse([](const sdg::Prim& prim) {
     if (prim.type() != sdg::PrimType::Mesh) return;
-    if (auto mesh = sdg::inlineMeshOf(prim)) {
+    if (auto mesh = sdg::inlineMeshOf(prim, 0)) {
       try {
         sdg::MeshData triangles = sdg::triangulateInlineMesh(*mesh, prim.path());
         (void)triangles;

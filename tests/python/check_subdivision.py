@@ -5,10 +5,11 @@
                                   render.subdivision_level none: both frames show the three meshes,
                                   and they differ only because the refined surfaces are rounded (the
                                   cage drawn as authored covers more pixels); a level outside the
-                                  table is exit 2 naming the setting. Then
-                                  ../shared/usd-corpus/arnold-usd/test_1383/test.usda (a catmullClark
-                                  quad grid and a loop triangle fan): validate and run exit 0 and the
-                                  frame shows the meshes (exit 77 when the corpus is absent).
+                                  table is exit 2 naming the setting. Then Pixar's
+                                  ../shared/usd-samples/full_assets/Teapot/Teapot.usd (meshes that
+                                  author subdivisionScheme catmullClark): validate and run
+                                  exit 0 at the default level and at none, and both frames show the
+                                  teapot (exit 77 when the samples are absent).
 """
 import glob
 import os
@@ -57,17 +58,20 @@ def main():
         check(r.returncode == 2 and "subdivision_level" in r.stderr,
               f"level 9: exit {r.returncode}, expected 2 naming render.subdivision_level: {r.stderr}")
 
-        corpus = os.path.normpath(os.path.join(repo, "..", "shared", "usd-corpus", "arnold-usd", "test_1383", "test.usda"))
-        if not os.path.exists(corpus):
-            code = finish("ok (usd-corpus absent: test_1383 skipped)")
+        teapot = os.path.normpath(os.path.join(repo, "..", "shared", "usd-samples", "full_assets", "Teapot", "Teapot.usd"))
+        if not os.path.exists(teapot):
+            code = finish("ok (usd-samples absent: the teapot skipped)")
             return code if code else 77
-        r = sdg(binary, "validate", corpus)
-        check(r.returncode == 0, f"validate test_1383: exit {r.returncode}: {r.stderr}")
-        out = os.path.join(tmp, "test_1383")
-        r = sdg(binary, "run", corpus, "--frames", "1", "--out", out)
-        check(r.returncode == 0, f"run test_1383: exit {r.returncode}: {r.stderr}")
-        rgb = first_rgb(out)
-        check(rgb is not None and covered(rgb) > 2000, f"test_1383: the frame shows {covered(rgb) if rgb is not None else 0} pixels of geometry")
+        r = sdg(binary, "validate", teapot)
+        check(r.returncode == 0, f"validate Teapot.usd: exit {r.returncode}: {r.stderr}")
+        for level in ("2", "none"):
+            out = os.path.join(tmp, "teapot_" + level)
+            r = sdg(binary, "run", teapot, "--frames", "1", "--resolution", "128x128", "--out", out,
+                    "--set", f"render.subdivision_level={level}")
+            check(r.returncode == 0, f"run Teapot.usd at level {level}: exit {r.returncode}: {r.stderr}")
+            rgb = first_rgb(out)
+            shown = covered(rgb) if rgb is not None else 0
+            check(shown > 500, f"Teapot.usd at level {level}: the frame shows {shown} pixels of geometry")
     return finish()
 
 

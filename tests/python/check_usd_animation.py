@@ -12,8 +12,8 @@
                                            second update) pins the box on the updates it writes; a run
                                            without pixels restores the stage on stop.
   check_usd_animation.py BIN REPO corpus   ../shared/usd-corpus/arnold-usd/test_1726 (animated orient,
-                                           24 tps) and test_1442 (time samples) run and their frames
-                                           differ over time. Exit 77 when the corpus is absent.
+                                           24 tps) runs and its frames differ over time. Exit 77 when
+                                           the corpus is absent.
 """
 import glob
 import json
@@ -152,7 +152,9 @@ prims:
 
 def check_corpus(binary, repo, tmp):
     corpus = os.path.join(repo, "..", "shared", "usd-corpus", "arnold-usd")
-    files = [os.path.join(corpus, "test_1726", "test.usdz")] + sorted(glob.glob(os.path.join(corpus, "test_1442", "*.usd*")))
+    # test_1442's samples are a PointInstancer's arrays (expanded once, at the
+    # start time code: not played) on a frame that is black: not a check of play.
+    files = [os.path.join(corpus, "test_1726", "test.usdz")]
     files = [f for f in files if os.path.isfile(f)]
     if not files:
         print(f"skipped: no corpus files under {corpus}")

@@ -88,7 +88,9 @@ struct Row {
 void checkFrame(const Frame& f) {
   // Uniform and indexed faceVarying rows are pure red | green; the vertex
   // row's gradient is 3:1 at the quads' centres (0.75 red, 0.25 green on
-  // the left), less after the rasterizer's tone curve.
+  // the left), less after the rasterizer's tone curve. The quads are refined
+  // (no subdivisionScheme: catmullClark at render.subdivision_level 2), so the
+  // colours pass through OpenSubdiv's face-varying refinement too.
   const Row rows[] = {{"/World/Uniform", 1.9, 0.85f}, {"/World/Vertex", 0.7, 0.58f}, {"/World/Indexed", -0.5, 0.85f}};
   for (const Row& row : rows) {
     CAPTURE(row.prim);
@@ -97,8 +99,8 @@ void checkFrame(const Frame& f) {
     CHECK(f.instance[right] == instanceOf(row.prim));
     const Vec3f l = f.color[left], r = f.color[right];
     CAPTURE(l.transpose(), r.transpose());
-    CHECK(l.x() > 0.05f);
-    CHECK(r.y() > 0.05f);
+    CHECK(l.x() > 0.01f);  // lit (the rasterizer's dome-only frame is dark: about 0.02-0.03)
+    CHECK(r.y() > 0.01f);
     CHECK(l.x() / (l.x() + l.y()) > row.share);
     CHECK(r.y() / (r.x() + r.y()) > row.share);
     CHECK(l.z() < 0.5f * l.x());

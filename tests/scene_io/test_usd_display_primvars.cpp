@@ -125,7 +125,7 @@ TEST_CASE("usd display primvars: constant ones stay the gprim's attributes", "[u
   CHECK(!quads.findAttribute("primvars:displayColor:faceVarying"));
   CHECK(!quads.findAttribute("primvars:displayOpacity:faceVarying"));
   // Nothing per vertex: the triangulated mesh has no colours.
-  CHECK(meshDataFor(meshKeyOf(quads), AssetResolver{}, "/Quads").colors.empty());
+  CHECK(meshDataFor(meshKeyOf(quads, 0), AssetResolver{}, "/Quads").colors.empty());
 }
 
 TEST_CASE("usd display primvars: an unauthored interpolation is read from the count", "[usd_import][display_primvars]") {
@@ -152,7 +152,7 @@ TEST_CASE("usd display primvars: wrong counts and indices are located errors", "
   SECTION("too few for the interpolation") {
     Imported in;
     importText(twoQuads("    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = \"vertex\")\n"), in);
-    CHECK_THAT(errors(in.diag), Catch::Contains("/Quads.primvars:displayColor: vertex needs 6 items, found 2"));
+    CHECK_THAT(errors(in.diag), Catch::Contains("/Quads.primvars:displayColor: vertex needs 6 items (one per point), found 2"));
   }
   SECTION("an index outside the values") {
     Imported in;
@@ -160,7 +160,7 @@ TEST_CASE("usd display primvars: wrong counts and indices are located errors", "
     int[] primvars:displayColor:indices = [0, 2]
 )"),
                in);
-    CHECK_THAT(errors(in.diag), Catch::Contains("primvars:displayColor:indices: 2 is outside the 2 values"));
+    CHECK_THAT(errors(in.diag), Catch::Contains("primvars:displayColor:indices: expected each index to be one of the 2 values (0 to 1), found 2 at [1]"));
   }
   SECTION("not a colour") {
     Imported in;
@@ -214,7 +214,7 @@ TEST_CASE("usd display primvars: the triangulated mesh carries colour and opacit
              in);
   REQUIRE(errors(in.diag).empty());
   const Prim& quads = *in.stage.find("/Quads");
-  const MeshData mesh = meshDataFor(meshKeyOf(quads), AssetResolver{}, "/Quads");
+  const MeshData mesh = meshDataFor(meshKeyOf(quads, 0), AssetResolver{}, "/Quads");
   REQUIRE(mesh.colors.size() == mesh.positions.size());
   REQUIRE(mesh.colors.size() == 8);  // one vertex per corner
   for (size_t i = 0; i < 8; ++i) {
@@ -222,7 +222,7 @@ TEST_CASE("usd display primvars: the triangulated mesh carries colour and opacit
     CHECK(mesh.colors[i].isApprox(i < 4 ? Eigen::Vector4f(1, 0, 0, 0.75f) : Eigen::Vector4f(0, 1, 0, 0.25f)));
   }
   // A colour array of the wrong length is the mesh's problem, named.
-  auto broken = std::make_shared<InlineMesh>(*inlineMeshOf(quads));
+  auto broken = std::make_shared<InlineMesh>(*inlineMeshOf(quads, 0));
   broken->displayColor = Value::makeFloatArray(ValueType::Color3fArray, {1, 0, 0});
   CHECK(inlineMeshProblem(*broken) == "primvars:displayColor:faceVarying has 1 items; expected one per face-vertex (8)");
 }
@@ -235,6 +235,12 @@ TEST_CASE("usd display primvars: the render list uses them only without a bound 
 )") + quadsPrim("Faded", "    float[] primvars:displayOpacity = [0.3]\n") +
                  R"(def Material "M"
 {
+    token outputs:surface.connect = </M/S.outputs:surface>
+    def Shader "S"
+    {
+        uniform token info:id = "UsdPreviewSurface"
+        token outputs:surface
+    }
 }
 def Mesh "Bound" (
     prepend apiSchemas = ["MaterialBindingAPI"]
@@ -320,9 +326,9 @@ prims:
   const Scene scene = buildScene(sceneDocumentFromText(yaml, "t.yaml"), catalog);
   const Prim& quads = *scene.stage.find("/Quads");
   CHECK(floats(quads, "primvars:displayColor:faceVarying") == kRedGreen);
-  CHECK(inlineMeshProblem(*inlineMeshOf(quads)).empty());
+  CHECK(inlineMeshProblem(*inlineMeshOf(quads, 0)).empty());
   const std::string written = writeSceneYaml(scene, catalog);
-  CHECK_THAT(written, Catch::Contains("primvars:displayColor:faceVarying: [[1, 0, 0], [1, 0, 0]"));
+  CHECK_THAT(written, Catch::Contains("primvars:displayColor:faceVarying: [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]"));
   const Scene back = buildScene(sceneDocumentFromText(written, "back.yaml"), catalog);
   CHECK(floats(*back.stage.find("/Quads"), "primvars:displayColor:faceVarying") == kRedGreen);
   CHECK(floats(*back.stage.find("/Quads"), "primvars:displayOpacity:faceVarying") == std::vector<float>{1, 1, 1, 1, 1, 0, 0, 1});
@@ -338,10 +344,9 @@ prims:
     faceVertexIndices: [0, 1, 2, 3]
     primvars:displayColor:faceVarying: [[1, 0, 0]]
 )";
-  const Scene scene = buildScene(sceneDocumentFromText(yaml, "t.yaml"), test::builtinCatalog());
-  Diagnostics diag;
-  validateScene(scene, test::builtinCatalog(), diag);
-  CHECK_THAT(errors(diag), Catch::Contains("t.yaml:3:") &&
-                               Catch::Contains("/Quad: primvars:displayColor:faceVarying has 1 items; expected one per "
-                                               "face-vertex (4)"));
+  // Located at the attribute's value (line 8, column 40).
+  CHECK_THROWS_WITH(buildScene(sceneDocumentFromText(yaml, "t.yaml"), test::builtinCatalog()),
+                    Catch::Contains("t.yaml:8:40:") &&
+                        Catch::Contains("/Quad: primvars:displayColor:faceVarying has 1 items; expected one per "
+                                        "face-vertex (4)"));
 }

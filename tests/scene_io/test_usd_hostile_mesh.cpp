@@ -245,9 +245,9 @@ TEST_CASE("usd hostile mesh: the YAML inline mesh refuses what the USD import re
   prim.setAttribute("faceVertexCounts", Value::makeIntArray({3}));
   prim.setAttribute("faceVertexIndices", Value::makeIntArray({0, 1, 2}));
   std::string attribute;
-  CHECK(inlineMeshProblem(*inlineMeshOf(prim), &attribute) == "points[2] is not finite (found nan)");
+  CHECK(inlineMeshProblem(*inlineMeshOf(prim, 0), &attribute) == "points[2] is not finite (found nan)");
   CHECK(attribute == "points");
-  CHECK_THROWS_AS(triangulateInlineMesh(*inlineMeshOf(prim), "/M"), RunError);
+  CHECK_THROWS_AS(triangulateInlineMesh(*inlineMeshOf(prim, 0), "/M"), RunError);
 }
 
 }  // namespace sdg
