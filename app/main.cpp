@@ -10,6 +10,7 @@
 #include "stop_signals.h"
 #include "core/diagnostics.h"
 #include "core/log.h"
+#include "scene_io/usd_mesh_asset.h"
 
 namespace {
 
@@ -40,6 +41,7 @@ std::string sdg::cli::versionText() {
 
 int main(int argc, char** argv) {
   using namespace sdg;
+  registerUsdMeshAssets();  // `asset: x.usd` meshes, for every command that draws or checks a scene
   CLI::App app(kDescription, "sdgbehave");
   app.require_subcommand(1);
   app.set_version_flag("--version", cli::versionText());

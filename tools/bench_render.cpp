@@ -18,6 +18,7 @@
 #include "core/diagnostics.h"
 #include "render/raster/renderer.h"
 #include "run/scene_setup.h"
+#include "scene_io/usd_mesh_asset.h"
 #include "writers/png_encoder.h"
 
 using namespace sdg;
@@ -129,6 +130,7 @@ int measureAll(int argc, char** argv) {
   if (argc > 1) {
     // A scene file (e.g. one written by `run --save-stage`): its first camera,
     // its stage as written (behaviors and events do not run here).
+    registerUsdMeshAssets();  // `asset: x.usd` meshes
     LoadedScene loaded = loadSceneForRun(SceneRequest{.scenePath = argv[1]});
     Renderer renderer(*context, loaded.assets, settings);
     const std::string name = "render 512x512: " + std::filesystem::path(argv[1]).filename().string();

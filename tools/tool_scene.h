@@ -17,6 +17,7 @@
 #include "render/pathtrace/path_tracer.h"
 #include "render/render_list.h"
 #include "scene_io/scene_loader.h"
+#include "scene_io/usd_mesh_asset.h"
 
 namespace sdg {
 
@@ -32,6 +33,7 @@ struct ToolScene {
 
 inline ToolScene loadToolScene(const std::string& file) {
   ToolScene t;
+  registerUsdMeshAssets();  // `asset: x.usd` meshes
   t.scene = loadScene(file, builtinRegistry().catalog());
   t.list = buildRenderList(t.scene.stage);
   t.assets = makeSceneResolver(t.scene.sourceDir, t.scene.assetRoots, {});

@@ -135,7 +135,8 @@ void setUsdMeshReader(UsdMeshReader reader) { gUsdMeshReader.store(reader); }
 MeshData loadMeshFile(const std::string& path, const std::string& submesh) {
   if (isUsdMeshFile(path)) {
     const UsdMeshReader reader = gUsdMeshReader.load();
-    if (!reader) throw RunError(path + ": USD mesh files are read only once a scene is loaded (scene_io)");
+    if (!reader) throw RunError(path + ": no USD mesh reader is installed; a program that draws scenes calls registerUsdMeshAssets() "
+                                  "(scene_io/usd_mesh_asset.h) when it starts");
     MeshData mesh = reader(path, submesh);
     if (mesh.triangleCount() > kMaxMeshTriangles)
       throw RunError(path + ": " + std::to_string(mesh.triangleCount()) + " triangles; meshes are limited to " +

@@ -161,7 +161,6 @@ Scene buildScene(const SceneDocument& doc, const BehaviorCatalog& catalog, std::
     ownAssets = std::make_unique<AssetLibrary>(buildAssetScene);
     assets = ownAssets.get();
   }
-  registerUsdMeshAssets();  // `asset: x.usd` meshes, for whatever draws this scene
   Diagnostics diag;
   Scene scene;
   scene.sourcePath = doc.path;

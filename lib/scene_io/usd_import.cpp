@@ -451,7 +451,6 @@ UsdImportOptions usdImportOptionsFor(std::span<const std::string> overrides) {
 
 Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, const UsdImportOptions& options,
                      UsdImportReport& report) {
-  registerUsdMeshAssets();  // `asset: x.usd` meshes, for whatever draws this scene
   usd::ComposeOptions composeOptions;
   composeOptions.variantOverrides = options.variants;
   usd::ComposedStage composed;

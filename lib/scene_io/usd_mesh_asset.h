@@ -17,7 +17,9 @@ namespace sdg {
 MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh);
 
 // Installs loadUsdMeshAsset as the assets library's USD mesh reader
-// (assets/mesh_loader.h); the scene loaders call it.
+// (assets/mesh_loader.h). Each program that draws scenes calls it once when
+// it starts (the CLI's main, the unit tests' main, the developer tools):
+// the assets library lies below scene_io and cannot reach the reader itself.
 void registerUsdMeshAssets();
 
 }  // namespace sdg

@@ -191,8 +191,17 @@ class SkelPoser {
       skinPoints(t.points.items(), t.normals.items(), t.cornerPoints, geomBind, influences, meshSkinning, t.after,
                  outPoints, outNormals);
     };
+    // A pose from non-finite animation values (a hostile file) is refused, never drawn.
+    auto finite = [&](double time) {
+      if (std::all_of(outPoints.begin(), outPoints.end(), [](float v) { return std::isfinite(v); })) return true;
+      diag_.error(skel->animation ? skel->animation->loc : skel->skeleton->loc,
+                  mesh.path + ": skinning at time code " + std::to_string(time) +
+                      " gives points that are not finite (the animation's translations, rotations or scales)");
+      return false;
+    };
     for (Target& t : targets) {
       posedAt(clock_.startTimeCode, t);
+      if (!finite(clock_.startTimeCode)) return;
       t.prim->setAttribute("points", Value::makeFloatArray(ValueType::Point3fArray, outPoints));
       if (!(t.normals.size() == 0)) t.prim->setAttribute("normals", Value::makeFloatArray(ValueType::Normal3fArray, outNormals));
       if (skel->times.size() < 2) continue;
@@ -211,6 +220,7 @@ class SkelPoser {
       if (!(t.normals.size() == 0)) t.normalsTrack.imported = t.prim->findAttribute("normals")->value;
       for (double time : skel->times) {
         posedAt(time, t);
+        if (!finite(time)) return;
         t.pointsTrack.times.push_back(time);
         t.pointsTrack.values.push_back(Value::makeFloatArray(ValueType::Point3fArray, outPoints));
         if (!(t.normals.size() == 0)) {

@@ -156,6 +156,11 @@ TEST_CASE("usd skel: a binding that cannot be read is a located error", "[usd_sk
     REQUIRE(out->diag.hasErrors());
     CHECK_THAT(out->diag.all().front().format(), Catch::Contains("which is a Camera, not a Skeleton"));
   }
+  SECTION("an animation value that is not finite") {
+    auto out = importWith("float3[] translations = [(1, 0, 0)]", "float3[] translations = [(inf, 0, 0)]");
+    REQUIRE(out->diag.hasErrors());
+    CHECK_THAT(out->diag.all().front().format(), Catch::Contains("gives points that are not finite"));
+  }
   SECTION("weights fewer than indices") {
     auto out = importWith("jointWeights = [1, 1, 1, 1]", "jointWeights = [1, 1, 1]");
     REQUIRE(out->diag.hasErrors());
