@@ -15,6 +15,7 @@
 #include "run/color_renderer_choice.h"
 #include "scene_io/references.h"
 #include "scene_io/scene_loader.h"
+#include "scene_io/scene_source.h"
 #include "scene_io/overrides.h"
 #include "scene_io/scene_validate.h"
 #include "scene_io/scene_writer.h"
@@ -134,20 +135,6 @@ std::string isaacRootFor(const SceneRequest& request, const Scene& scene) {
   return root;
 }
 
-// A file the scene declares, relative to its folder; SceneError at the
-// declaration when it does not exist.
-std::string existingDeclaredFile(const std::filesystem::path& sceneDir, const DeclaredFile& file, const char* what) {
-  std::filesystem::path p(file.path);
-  if (p.is_relative()) p = sceneDir / p;
-  p = p.lexically_normal();
-  std::error_code ec;
-  if (std::filesystem::is_directory(p, ec))
-    throw SceneError(file.loc, std::string(what) + " " + text::quote(file.path) + " is a folder, not a file: " + p.string());
-  if (!std::filesystem::is_regular_file(p, ec))
-    throw SceneError(file.loc, std::string(what) + " " + text::quote(file.path) + " not found; searched: " + p.string());
-  return p.string();
-}
-
 // omni:scripting:scripts (scene_io/attached_scripts.h): --isaac-scripts,
 // else the scene's run.isaac_scripts, else auto.
 IsaacScriptChoice isaacScriptChoice(const SceneRequest& request, std::optional<IsaacScriptChoice> setting) {
@@ -157,15 +144,24 @@ IsaacScriptChoice isaacScriptChoice(const SceneRequest& request, std::optional<I
                                                            ", found " + text::quote(request.isaacScripts));
 }
 
-// Loads the behavior scripts prims list in omni:scripting:scripts and
-// records what each file stands for; says once per run which built-ins
-// stand in for missing Isaac files.
-class ScriptAttacher {
+// What reading a scene needs from the run (scene_io/scene_source.h): the
+// behavior registry, scripts run by the embedded interpreter, plugin
+// libraries; files listed in omni:scripting:scripts are attached as Isaac
+// attaches them, recorded in the catalog, and the built-ins standing in
+// for missing Isaac files are said once per run.
+class RunScriptHost : public SceneScriptHost {
  public:
-  ScriptAttacher(BehaviorRegistry& registry, IsaacScriptChoice choice) : registry_(registry), choice_(choice) {}
+  RunScriptHost(BehaviorRegistry& registry, const SceneRequest& request) : registry_(registry), request_(request) {}
 
-  // The behaviors `path` stands for; SceneError at `where` when it cannot.
-  std::vector<std::string> attach(const std::string& path, const SourceLoc& where) {
+  const BehaviorCatalog& catalog() const override { return registry_.catalog(); }
+  void loadScript(const std::string& path, const SourceLoc& where) override {
+    scripting::loadScript(registry_, path, where);
+  }
+  void loadPlugin(const std::string& path, const SourceLoc& where) override { registry_.loadPlugin(path, where); }
+  void sceneIsaacScripts(std::optional<IsaacScriptChoice> setting) override {
+    choice_ = isaacScriptChoice(request_, setting);
+  }
+  std::vector<std::string> attach(const std::string& path, const SourceLoc& where) override {
     if (auto known = registry_.catalog().attachedScripts.find(path); known != registry_.catalog().attachedScripts.end())
       return known->second;
     AttachedScript a = resolveAttachedScript(path, choice_, [this](const std::string& file, const SourceLoc& loc) {
@@ -177,111 +173,46 @@ class ScriptAttacher {
     registry_.attachScriptFile(path, a.behaviors);
     return a.behaviors;
   }
+
   void sayNote() const {
     if (!missing_.empty()) log::info(builtinStandInNote(missing_));
   }
+  // Files attached that ran (not the built-ins standing in), in load order.
   const std::vector<std::string>& scriptFiles() const { return scriptFiles_; }
 
  private:
   BehaviorRegistry& registry_;
-  IsaacScriptChoice choice_;
-  std::vector<std::string> scriptFiles_;  // files loaded (not the built-ins standing in)
+  const SceneRequest& request_;
+  IsaacScriptChoice choice_ = IsaacScriptChoice::Auto;
+  std::vector<std::string> scriptFiles_;
   std::vector<std::string> missing_;
 };
 
-}  // namespace
-
-bool isUsdStagePath(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+std::string absoluteNormal(const std::string& path) {
+  return std::filesystem::absolute(path).lexically_normal().string();
 }
 
-namespace {
-
-// A USD stage given where a scene is expected: its prims imported
-// (scene_io/usd_import.h), the defaults it does not say added, then --set
-// and the checks every scene gets.
-LoadedScene loadUsdStageForRun(const SceneRequest& request) {
-  BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
-  UsdImportReport report;
-  UsdImportOptions options = usdImportOptionsFor(request.overrides);
-  options.registerScript = [&](const std::string& script) {
-    scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
-  };
-  // Scripts the prims list load as the import meets them (before their
-  // prim's exposedVar values are read against the script's variables).
-  ScriptAttacher attacher(registry, isaacScriptChoice(request, std::nullopt));
-  options.attachScript = [&attacher](const std::string& path, const SourceLoc& where) {
-    return attacher.attach(path, where);
-  };
-  Scene scene = importUsdScene(request.scenePath, registry.catalog(), options, report);
-  for (const std::string& w : report.warnings) log::debug(w);  // each place a loss summary counts
-  for (const std::string& script : report.scriptFiles) scripting::loadScript(registry, script, SourceLoc{request.scenePath, 0, 0});
-  attacher.sayNote();
-  Diagnostics diag;
-  applyOverrides(request.overrides, registry.catalog(), scene, diag);
-  applyRenderSettingsToStage(scene);
-  if (!diag.hasErrors()) validateScene(scene, registry.catalog(), diag);
-  diag.throwIfErrors();
-  scripting::setHookTimeout(request.hookTimeout.value_or(scene.run.get("hook_timeout").get<double>()));
-  AssetResolver assets =
-      makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
-  if (request.confineAssets) assets.confineToRoots();
-  checkStageFiles(scene.stage, registry.catalog(), assets, diag);
-  diag.throwIfErrors();
-  std::vector<std::string> scriptFiles = request.scripts;
-  for (const std::string& s : report.scriptFiles) scriptFiles.push_back(s);
-  for (const std::string& s : attacher.scriptFiles()) scriptFiles.push_back(s);
-  for (std::string& file : scriptFiles) file = std::filesystem::absolute(file).lexically_normal().string();
-  // Every layer read is part of the run's identity; package entries by their package.
-  std::vector<std::string> mounted;
-  for (const std::string& layer : report.layers) {
-    std::string file = std::filesystem::absolute(usd::splitPackagePath(layer).first).lexically_normal().string();
-    if (std::find(mounted.begin(), mounted.end(), file) == mounted.end()) mounted.push_back(file);
-  }
-  std::vector<std::string> pluginFiles = request.plugins;
-  for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
-  return LoadedScene{std::move(registry),    std::move(scene),      std::move(assets),
-                     std::move(scriptFiles), std::move(mounted),    std::move(pluginFiles),
-                     report.losses.warnings()};
+// Each once, in order.
+std::vector<std::string> uniqueFiles(std::vector<std::string> files) {
+  std::vector<std::string> unique;
+  for (std::string& file : files)
+    if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(std::move(file));
+  return unique;
 }
 
 }  // namespace
 
 LoadedScene loadSceneForRun(const SceneRequest& request) {
-  if (isUsdStagePath(request.scenePath) && !request.sceneText) return loadUsdStageForRun(request);
-  SceneDocument doc = request.sceneText ? sceneDocumentFromText(*request.sceneText, request.scenePath)
-                                        : readSceneDocument(request.scenePath);
   BehaviorRegistry registry = registryWithPlugins(request.plugins, request.scripts);
-  // The scene's own plugins and scripts load before its prims are read:
-  // their behaviors must be known to check the prims. Paths are relative to
-  // the scene file.
-  const std::filesystem::path sceneDir = std::filesystem::path(request.scenePath).parent_path();
-  std::vector<std::string> scriptFiles = request.scripts;
-  for (const DeclaredFile& script : declaredFiles(doc, "scripts")) {
-    scriptFiles.push_back(existingDeclaredFile(sceneDir, script, "scripts: behavior script"));
-    scripting::loadScript(registry, scriptFiles.back(), script.loc);
-  }
-  std::vector<std::string> pluginFiles = request.plugins;
-  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins")) {
-    pluginFiles.push_back(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"));
-    registry.loadPlugin(pluginFiles.back(), plugin.loc);
-  }
-  for (std::string& file : pluginFiles) file = std::filesystem::absolute(file).lexically_normal().string();
-  // Script files prims list in omni:scripting:scripts, as Isaac attaches them.
-  ScriptAttacher attacher(registry, isaacScriptChoice(request, isaacScriptSetting(doc.root)));
-  for (const ListedScript& listed : listedScriptFiles(doc.root)) attacher.attach(listed.path, listed.loc);
-  for (const std::string& file : attacher.scriptFiles()) scriptFiles.push_back(file);
-  attacher.sayNote();
-  // Smart assets: their scripts register before any prim is read, so that
-  // the scene can attach and override their behaviors.
-  AssetLibrary assetLibrary(buildAssetScene, request.assetTexts);
-  for (const DeclaredFile& script : assetLibrary.preload(doc)) {
-    scriptFiles.push_back(script.path);
-    scripting::loadScript(registry, script.path, script.loc);
-  }
-  Scene scene = buildScene(doc, registry.catalog(), request.overrides, &assetLibrary);
+  RunScriptHost host(registry, request);
+  SceneSourceRead read = readSceneSource(
+      SceneSource{request.scenePath, request.sceneText, request.overrides, request.assetTexts}, host);
+  host.sayNote();
+  Scene& scene = read.scene;
+  // A USD stage's scripts are the files its prims list that ran.
+  if (isUsdStagePath(request.scenePath) && !request.sceneText)
+    for (const std::string& file : host.scriptFiles())
+      if (std::find(scene.scripts.begin(), scene.scripts.end(), file) == scene.scripts.end()) scene.scripts.push_back(file);
   scripting::setHookTimeout(request.hookTimeout.value_or(scene.run.get("hook_timeout").get<double>()));
   AssetResolver assets =
       makeSceneResolver(scene.sourceDir, scene.assetRoots, request.assetRoots, isaacRootFor(request, scene));
@@ -289,14 +220,21 @@ LoadedScene loadSceneForRun(const SceneRequest& request) {
   Diagnostics diag;
   checkStageFiles(scene.stage, registry.catalog(), assets, diag);
   diag.throwIfErrors();
-  for (std::string& file : scriptFiles) file = std::filesystem::absolute(file).lexically_normal().string();
-  std::vector<std::string> unique;
-  for (std::string& file : scriptFiles)
-    if (std::find(unique.begin(), unique.end(), file) == unique.end()) unique.push_back(std::move(file));
-  scriptFiles = std::move(unique);
-  return LoadedScene{std::move(registry),    std::move(scene),     std::move(assets),
-                     std::move(scriptFiles), assetLibrary.files(), std::move(pluginFiles),
-                     assetLibrary.usdLosses().warnings()};
+  // What the run's identity hashes: every script and plugin it loaded, every file it mounted.
+  std::vector<std::string> scriptFiles = request.scripts;
+  scriptFiles.insert(scriptFiles.end(), read.scriptFiles.begin(), read.scriptFiles.end());
+  scriptFiles.insert(scriptFiles.end(), host.scriptFiles().begin(), host.scriptFiles().end());
+  for (std::string& file : scriptFiles) file = absoluteNormal(file);
+  std::vector<std::string> pluginFiles = request.plugins;
+  pluginFiles.insert(pluginFiles.end(), read.pluginFiles.begin(), read.pluginFiles.end());
+  for (std::string& file : pluginFiles) file = absoluteNormal(file);
+  return LoadedScene{std::move(registry),
+                     std::move(read.scene),
+                     std::move(assets),
+                     uniqueFiles(std::move(scriptFiles)),
+                     std::move(read.mountedFiles),
+                     std::move(pluginFiles),
+                     std::move(read.dropped)};
 }
 
 void reloadBehaviorScript(const std::string& path) { scripting::reloadScript(path); }

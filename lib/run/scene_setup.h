@@ -15,6 +15,7 @@
 #include "behavior/behavior.h"
 #include "physics/physics_settings.h"
 #include "scene_io/scene.h"
+#include "scene_io/scene_source.h"  // isUsdStagePath, for the callers that branch on it
 
 namespace sdg {
 
@@ -92,14 +93,13 @@ Scene flattenedScene(const LoadedScene& loaded);
 // its events (they have run), so reloading it renders the same stacks.
 void saveStageAfterPreroll(const LoadedScene& loaded, const std::string& path);
 
-// Loads and checks the scene, including that every file it names (meshes,
-// textures, behaviors' file lists, plugins) exists and can be read, and sets
+// Loads and checks the scene (scene_io/scene_source.h: a YAML scene or a USD
+// stage, scripts and plugins loaded through the run's registry), including
+// that every file it names (meshes, textures, behaviors' file lists,
+// plugins) exists and can be read, and sets
 // the time limit of calls into behavior scripts (--hook-timeout, else
 // run.hook_timeout). Throws SceneError for invalid input (exit 2).
 LoadedScene loadSceneForRun(const SceneRequest& request);
-// A USD stage file (.usd, .usda, .usdc, .usdz): loadSceneForRun imports it
-// (scene_io/usd_import.h) instead of reading YAML.
-bool isUsdStagePath(const std::string& path);
 // Runs a behavior script again after it changed on disk, so that scenes
 // loaded from now on get its new classes (scripting::reloadScript: a
 // SceneError says why a script no longer loads; the last good one stays).

@@ -194,15 +194,15 @@ void AssetLibrary::preloadFrom(const SceneDocument& doc, std::vector<std::string
     SourceLoc from = via.known() ? referencedFrom(ref->loc, via) : ref->loc;
     const std::string file = absoluteNormal(fs::path(ref->file).is_absolute() ? fs::path(ref->file) : dir / ref->file);
     if (isUsdFile(file)) {
-      // The behavior scripts its prims list register before any prim is
-      // read, as a YAML asset's scripts: do. A broken file is reported
-      // where it is mounted.
+      // The script files its prims list are attached by the program's
+      // loader before any prim is read, as a YAML scene's own listed
+      // scripts are; each is reported where the file is mounted. A broken
+      // file is reported where it is mounted, when it is built.
       try {
-        for (const std::string& script : usdBehaviorScripts(usdStage(file, {})))
-          if (std::find(scripts_.begin(), scripts_.end(), script) == scripts_.end()) {
-            scripts.push_back(DeclaredFile{script, from});
-            scripts_.push_back(script);
-          }
+        for (const ListedScript& script : usdListedScripts(usdStage(file, {})))
+          if (std::none_of(usdScripts_.begin(), usdScripts_.end(),
+                           [&](const ListedScript& l) { return l.path == script.path; }))
+            usdScripts_.push_back(ListedScript{script.path, from});
       } catch (const usd::UsdError&) {
       }
       continue;

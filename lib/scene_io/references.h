@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "scene_io/attached_scripts.h"
 #include "scene_io/overrides.h"
 #include "scene_io/raw_node.h"
 #include "scene_io/scene.h"
@@ -71,7 +72,14 @@ class AssetLibrary {
   // behaviors can be registered before any prim is read. Cycles, nesting
   // beyond kMaxReferenceDepth and missing files throw SceneError located at
   // the reference (and the chain that led to it).
+  // The script files that the prims of mounted USD files list in
+  // omni:scripting:scripts are collected too (usdScripts()): the program's
+  // loader attaches them before the scene is built, as it does a YAML
+  // scene's own listed scripts.
   std::vector<DeclaredFile> preload(const SceneDocument& doc);
+  // Files listed in omni:scripting:scripts by the USD files preload met,
+  // each once, located at the reference that mounts its file.
+  const std::vector<ListedScript>& usdScripts() const { return usdScripts_; }
 
   // Defines the referenced prim tree at `mountPath` (its parent exists, the
   // path is free). `fromDir` is the referencing file's folder. Problems go
@@ -120,6 +128,7 @@ class AssetLibrary {
   std::vector<bool> selectionUsed_;
   std::vector<std::string> building_;                       // the chain being built, for cycles
   std::vector<std::string> scripts_;
+  std::vector<ListedScript> usdScripts_;
   std::map<std::string, std::string> texts_;
   AssetSceneBuilder build_;
 };

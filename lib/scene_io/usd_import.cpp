@@ -456,18 +456,15 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
   usd::ComposedStage composed;
   try {
     composed = usd::composeStage(path, [](const std::string& id) { return usd::readLayerFile(id); }, composeOptions);
+  } catch (const usd::VariantOverrideError& e) {
+    // A chosen set or variant the stage lacks: reported at the choice.
+    auto at = options.variantLocs.find(e.prim() + " " + e.set());
+    throw SceneError(at != options.variantLocs.end() ? at->second : e.loc(), e.what());
   } catch (const usd::UsdError& e) {
     // what() starts with the location SceneError adds again.
     std::string message = e.what();
     const std::string where = e.loc().str() + ": ";
     if (e.loc().known() && message.rfind(where, 0) == 0) message = message.substr(where.size());
-    // A chosen set or variant the stage lacks: reported at the choice.
-    for (const auto& [key, loc] : options.variantLocs) {
-      const std::string prim = key.substr(0, key.find(' ')), set = key.substr(key.find(' ') + 1);
-      if (message.find("variant override " + prim + " " + set + "=") != std::string::npos ||
-          message.find(prim + ": variant set '" + set + "' has no variant") != std::string::npos)
-        throw SceneError(loc, message);
-    }
     throw SceneError(e.loc(), message);
   }
   Scene scene;
@@ -479,10 +476,6 @@ Scene importUsdScene(const std::string& path, const BehaviorCatalog& catalog, co
       it != composed.layerMetadata.end() && usd::isNumeric(it->second.kind) && !it->second.numbers.empty() &&
       it->second.numbers[0] >= 1)
     scene.stage.metadata().timeCodesPerSecond = it->second.numbers[0];
-  // The behavior scripts the prims list are the scene's scripts.
-  scene.scripts = usdBehaviorScripts(composed);
-  if (options.registerScript)
-    for (const std::string& script : scene.scripts) options.registerScript(script);
   Diagnostics diag;
   importUsdPrims(composed, "/", scene.stage, "/", catalog, options, report, diag);
   // A stage that plays its own animation runs at its rate (USD's 24 when unsaid).

@@ -49,27 +49,22 @@ struct UsdImportOptions {
   // writer and capture: for a stage run on its own, not for one mounted in
   // a YAML scene.
   bool runDefaults = true;
-  // Registers a behavior script the stage lists (usdBehaviorScripts) in the
-  // caller's registry, whose catalog the import is given: called after
-  // composition, before any prim is imported. Unset: such scripts must be
-  // registered already.
-  std::function<void(const std::string& script)> registerScript;
-  // Isaac's six behavior scripts named by file stand in for the built-ins
-  // of the same name; other .py files listed in omni:scripting:scripts are
-  // loaded as behavior scripts (the loader registers them before import).
+  // Without attachScript, Isaac's six behavior scripts named by file stand
+  // in for the built-ins of the same name; a file the catalog records as
+  // attached (BehaviorCatalog::attachedScripts, the loader's work) stands
+  // for what it defined.
   bool builtinsForIsaacScripts = true;
-  // When set, it decides what each listed file stands for (the run's
-  // loader: scene_io/attached_scripts.h), loading scripts as they are met;
-  // the two rules above are then not used.
+  // What each file listed in omni:scripting:scripts stands for, decided by
+  // the program's script loader (run/'s ScriptAttacher:
+  // scene_io/attached_scripts.h), loading scripts as they are met; throws
+  // SceneError at `where` when a file cannot be attached.
   std::function<std::vector<std::string>(const std::string& path, const SourceLoc& where)> attachScript;
 };
 
-// What importing found besides the stage: script files the prims list
-// (absolute), every layer read (for the run's identity), what the stage
-// does not carry over: counted by kind (`losses`, what commands print) and
-// each place in words (`warnings`, for --verbose).
+// What importing found besides the stage: every layer read (for the run's
+// identity), what the stage does not carry over: counted by kind (`losses`,
+// what commands print) and each place in words (`warnings`, for --verbose).
 struct UsdImportReport {
-  std::vector<std::string> scriptFiles;
   std::vector<std::string> layers;
   UsdLosses losses;
   std::vector<std::string> warnings;

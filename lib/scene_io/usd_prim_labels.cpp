@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "core/text.h"
@@ -180,68 +179,47 @@ void importSemantics(const usd::ComposedPrim& prim, Prim& stagePrim, Diagnostics
 
 // ---- behaviors ---------------------------------------------------------------
 
-std::optional<std::string> readSmallFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) > (4u << 20)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (!in && !in.eof()) return std::nullopt;
-  return s.str();
-}
-
-bool usesScriptApi(const std::string& source) {
-  static const std::regex kImport(R"((^|\n)\s*(import\s+sdgbehave|from\s+sdgbehave(\.\w+)*\s+import))");
-  return std::regex_search(source, kImport);
-}
-
-std::string behaviorNamespaceOf(const std::string& source) {
-  static const std::regex kNs(R"((^|\n)\s*BEHAVIOR_NS\s*=\s*["']([^"']+)["'])");
-  std::smatch m;
-  return std::regex_search(source, m, kNs) ? m[2].str() : "";
-}
-
-// Whether a file named in omni:scripting:scripts is an sdgbehave behavior script.
-bool isUserScript(const std::string& resolved) {
-  std::optional<std::string> source = readSmallFile(resolved);
-  return source && usesScriptApi(*source);
-}
-
-struct ScriptBehavior {
-  const BehaviorSpec* spec = nullptr;
-  std::string error;  // why not, when spec is null
+// The behaviors a file listed in omni:scripting:scripts stands for. The
+// program's script loader (run/'s ScriptAttacher, behind
+// UsdImportOptions::attachScript, or before the import for the files it
+// was handed: BehaviorCatalog::attachedScripts) is the only judge of what a
+// file defines; without one, Isaac's six scripts stand for the built-ins by
+// file name and any other file cannot be attached.
+struct ScriptBehaviors {
+  std::vector<const BehaviorSpec*> specs;
+  std::string error;  // why not, when specs is empty
 };
 
-ScriptBehavior behaviorForScript(const std::string& resolved, const BehaviorCatalog& catalog,
-                                 const UsdImportOptions& options, UsdImportReport& report) {
-  std::optional<std::string> source = readSmallFile(resolved);
-  const std::string file = fileNameOf(resolved);
-  if (source && usesScriptApi(*source)) {
-    if (std::find(report.scriptFiles.begin(), report.scriptFiles.end(), resolved) == report.scriptFiles.end())
-      report.scriptFiles.push_back(resolved);
-    const std::string ns = behaviorNamespaceOf(*source);
-    if (ns.empty()) return {nullptr, "the behavior script " + resolved + " sets no BEHAVIOR_NS"};
-    if (const BehaviorSpec* spec = catalog.find(ns)) return {spec, ""};
-    return {nullptr, "the behavior script " + resolved + " defines " + text::quote(ns) +
-                         ", which is not registered; the loader registers the scripts a stage lists "
-                         "(usdBehaviorScripts) before importing its prims"};
+ScriptBehaviors behaviorsForScript(const std::string& resolved, const BehaviorCatalog& catalog,
+                                   const UsdImportOptions& options) {
+  if (auto attached = catalog.attachedScripts.find(resolved); attached != catalog.attachedScripts.end()) {
+    ScriptBehaviors out;
+    for (const std::string& name : attached->second) {
+      const BehaviorSpec* spec = catalog.find(name);
+      if (!spec) return {{}, "the script " + resolved + " defines " + text::quote(name) + ", which is not registered"};
+      out.specs.push_back(spec);
+    }
+    return out;
   }
+  const std::string file = fileNameOf(resolved);
   if (options.builtinsForIsaacScripts) {
     const std::string builtin = builtinForIsaacScript(file);
     if (!builtin.empty()) {
-      if (const BehaviorSpec* spec = catalog.find(builtin)) return {spec, ""};
-      return {nullptr, "the built-in behavior " + text::quote(builtin) + " is not registered"};
+      if (const BehaviorSpec* spec = catalog.find(builtin)) return {{spec}, ""};
+      return {{}, "the built-in behavior " + text::quote(builtin) + " is not registered"};
     }
   }
-  if (!source)
-    return {nullptr, "script " + text::quote(resolved) +
-                         " not found (hint: Isaac's behavior scripts are recognised by file name: " +
-                         "location_randomizer.py, rotation_randomizer.py, look_at_behavior.py, light_randomizer.py, "
-                         "texture_randomizer.py, volume_stack_randomizer.py; any other must be an sdgbehave "
-                         "behavior script that exists)"};
-  return {nullptr, "script " + text::quote(resolved) +
-                       " is not one of Isaac's six behavior scripts and does not use sdgbehave's script API "
-                       "(hint: port it to `import sdgbehave`, see docs/scripting.md)"};
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(resolved, ec))
+    return {{}, "script " + text::quote(resolved) +
+                    " not found (hint: Isaac's behavior scripts are recognised by file name: " +
+                    "location_randomizer.py, rotation_randomizer.py, look_at_behavior.py, light_randomizer.py, "
+                    "texture_randomizer.py, volume_stack_randomizer.py; any other must be a behavior script that "
+                    "exists)"};
+  return {{}, "script " + text::quote(resolved) +
+                  " was not loaded: the program reading this stage attaches the scripts its prims list before "
+                  "importing them (sdgbehave run, validate and inspect do); here only Isaac's six stand for "
+                  "built-ins"};
 }
 
 void attachBehavior(const usd::ComposedPrim& prim, Prim& stagePrim, const BehaviorSpec& spec,
@@ -281,7 +259,7 @@ void attachBehavior(const usd::ComposedPrim& prim, Prim& stagePrim, const Behavi
 
 void importBehaviors(const usd::ComposedPrim& prim, Prim& stagePrim,
                      const std::function<std::string(const std::string&)>& mapPath, const BehaviorCatalog& catalog,
-                     const UsdImportOptions& options, UsdImportReport& report, Diagnostics& diag) {
+                     const UsdImportOptions& options, Diagnostics& diag) {
   const usd::ComposedProperty* scripts = prim.property(std::string(kScriptsAttribute));
   if (!scripts || scripts->value.empty()) return;
   if (scripts->value.kind != usd::Kind::AssetPath) {
@@ -297,12 +275,12 @@ void importBehaviors(const usd::ComposedPrim& prim, Prim& stagePrim,
         if (const BehaviorSpec* spec = catalog.find(name)) attachBehavior(prim, stagePrim, *spec, mapPath, diag);
       continue;
     }
-    ScriptBehavior b = behaviorForScript(path, catalog, options, report);
-    if (!b.spec) {
+    ScriptBehaviors b = behaviorsForScript(path, catalog, options);
+    if (b.specs.empty()) {
       diag.error(scripts->loc, prim.path + "." + scripts->name + ": " + b.error);
       continue;
     }
-    attachBehavior(prim, stagePrim, *b.spec, mapPath, diag);
+    for (const BehaviorSpec* spec : b.specs) attachBehavior(prim, stagePrim, *spec, mapPath, diag);
   }
 }
 
@@ -326,15 +304,15 @@ std::string isaacScriptForBuiltin(const std::string& behaviorName) {
   return "";
 }
 
-std::vector<std::string> usdBehaviorScripts(const usd::ComposedStage& composed) {
-  std::vector<std::string> found;
+std::vector<ListedScript> usdListedScripts(const usd::ComposedStage& composed) {
+  std::vector<ListedScript> found;
   for (const usd::ComposedPrim& prim : composed.prims) {
     if (!prim.defined || !prim.active) continue;
     const usd::ComposedProperty* scripts = prim.property(std::string(kScriptsAttribute));
-    if (!scripts) continue;
+    if (!scripts || scripts->value.kind != usd::Kind::AssetPath) continue;
     for (const std::string& path : scripts->resolvedAssets)
-      if (isUserScript(path) && std::find(found.begin(), found.end(), path) == found.end())
-        found.push_back(path);
+      if (std::none_of(found.begin(), found.end(), [&](const ListedScript& l) { return l.path == path; }))
+        found.push_back(ListedScript{path, scripts->loc});
   }
   return found;
 }
@@ -345,7 +323,7 @@ void importUsdPrimLabels(const usd::ComposedStage& composed, const usd::Composed
                          Diagnostics& diag) {
   importBinding(composed, prim, stagePrim, mapPath, report, diag);
   importSemantics(prim, stagePrim, diag);
-  importBehaviors(prim, stagePrim, mapPath, catalog, options, report, diag);
+  importBehaviors(prim, stagePrim, mapPath, catalog, options, diag);
 }
 
 }  // namespace sdg

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "scene_io/attached_scripts.h"
 #include "scene_io/usd_import.h"
 
 namespace sdg {
@@ -15,11 +16,10 @@ std::string builtinForIsaacScript(const std::string& fileName);
 // The inverse, for the export: "locationRandomizer" -> "location_randomizer.py"; "" for others.
 std::string isaacScriptForBuiltin(const std::string& behaviorName);
 
-// The user behavior scripts (`.py` files that use sdgbehave's script API)
-// that the stage's prims list in omni:scripting:scripts, absolute, each
-// once, in prim order. The loader registers them in the behavior registry
-// before importing the prims, so that their BEHAVIOR_NS is in the catalog
-// importUsdPrimLabels attaches from.
-std::vector<std::string> usdBehaviorScripts(const usd::ComposedStage& composed);
+// Every file the stage's prims list in omni:scripting:scripts (resolved,
+// each once, in prim order, with the first place that lists it), whatever
+// it holds: the program's script loader decides what each stands for
+// (run/'s ScriptAttacher) and attaches them before the prims are imported.
+std::vector<ListedScript> usdListedScripts(const usd::ComposedStage& composed);
 
 }  // namespace sdg

@@ -365,9 +365,10 @@ void Composer::checkOverridesUsed() const {
     for (const auto& [set, variant] : sets)
       if (std::find(used.begin(), used.end(), primPath + "\n" + set) == used.end()) {
         const ComposedPrim* prim = stage_.prim(primPath);
-        throw usdErrorAt(SourceLoc(), "variant override " + primPath + " " + set + "=" + variant + ": " +
-                                          (prim ? "the prim has no variant set '" + set + "'"
-                                                : "there is no prim " + primPath + " in the stage"));
+        throw VariantOverrideError(primPath, set,
+                                   "variant override " + primPath + " " + set + "=" + variant + ": " +
+                                       (prim ? "the prim has no variant set '" + set + "'"
+                                             : "there is no prim " + primPath + " in the stage"));
       }
 }
 

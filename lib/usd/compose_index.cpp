@@ -371,7 +371,7 @@ bool IndexBuilder::expandVariants(PrimIndex& index, const std::string& primPath)
                                                  for (const std::string& o : offered) list += (list.empty() ? "" : ", ") + o;
                                                  return list;
                                                }() + ")");
-      if (overridden) throw usdErrorAt(SourceLoc(), "variant override " + message);
+      if (overridden) throw VariantOverrideError(primPath, set, "variant override " + message);
       warnings_.push_back({SourceLoc(), "variant selection naming no variant", message + "; no variant applied"});
       return true;
     }

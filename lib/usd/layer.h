@@ -145,6 +145,20 @@ class UsdError : public std::runtime_error {
   SourceLoc loc_;
 };
 
+// A variant choice given to composition (ComposeOptions::variantOverrides)
+// that the stage cannot take: the prim, or its set, or the variant is not
+// there. Carries the choice, so that a caller reports it where it was made.
+class VariantOverrideError : public UsdError {
+ public:
+  VariantOverrideError(std::string prim, std::string set, const std::string& message)
+      : UsdError(SourceLoc(), message), prim_(std::move(prim)), set_(std::move(set)) {}
+  const std::string& prim() const { return prim_; }
+  const std::string& set() const { return set_; }
+
+ private:
+  std::string prim_, set_;
+};
+
 // A UsdError whose message starts with the location ("file:line:col: message").
 inline UsdError usdErrorAt(const SourceLoc& loc, const std::string& message) {
   return UsdError(loc, loc.known() ? loc.str() + ": " + message : message);

@@ -174,7 +174,6 @@ def Cube "Box"
   CHECK(box.findAttribute("exposedVar:locationRandomizer:seed")->value == Value::makeInt(-1));
   // Prim paths point into the stage.
   CHECK(box.findAttribute("exposedVar:lookAtBehavior:targetPrimPath")->value == Value::makeString("/Mnt/Target"));
-  CHECK(l.report.scriptFiles.empty());
 }
 
 TEST_CASE("usd labels: a bad exposedVar value is located at the usda file:line:col", "[scene_io][usd]") {
@@ -194,7 +193,7 @@ def Cube "Box"
   CHECK_THAT(l.diag.all()[1].message, Catch::Contains("did you mean"));
 }
 
-TEST_CASE("usd labels: unknown scripts are located errors, sdgbehave scripts are reported for the loader",
+TEST_CASE("usd labels: listed scripts stand for what the program's loader attached, else are located errors",
           "[scene_io][usd]") {
   const std::filesystem::path dir = test::uniqueTempPath("sdg_usd_labels_test");
   std::filesystem::create_directories(dir);
@@ -204,15 +203,35 @@ TEST_CASE("usd labels: unknown scripts are located errors, sdgbehave scripts are
   std::ofstream(isaacOnly) << "import omni.kit\n";
   usd::ComposedStage composed = composeText("#usda 1.0\ndef Cube \"Box\"\n{\n    asset[] omni:scripting:scripts = [@" + mine +
                                             "@, @" + isaacOnly + "@, @/nowhere/missing.py@]\n}\n");
-  CHECK(usdBehaviorScripts(composed) == std::vector<std::string>{mine});
+  // Every listed file, whatever it holds: the loader decides what each is.
+  const std::vector<ListedScript> listed = usdListedScripts(composed);
+  REQUIRE(listed.size() == 3);
+  CHECK(listed[0].path == mine);
+  CHECK(listed[1].path == isaacOnly);
+  CHECK(listed[2].loc.str() == "/v/scene.usda:4:5");
+
+  // No loader attached them: each is a located error saying why.
   Labelled l;
   label(composed, "/Box", l);
-  CHECK(l.report.scriptFiles == std::vector<std::string>{mine});
   REQUIRE(l.diag.errorCount() == 3);
   for (const Diagnostic& d : l.diag.all()) CHECK(d.loc.str() == "/v/scene.usda:4:5");
-  CHECK_THAT(l.diag.all()[0].message, Catch::Contains("'wobble', which is not registered"));
-  CHECK_THAT(l.diag.all()[1].message, Catch::Contains("hint: port it"));
+  CHECK_THAT(l.diag.all()[0].message, Catch::Contains("was not loaded"));
+  CHECK_THAT(l.diag.all()[1].message, Catch::Contains("was not loaded"));
   CHECK_THAT(l.diag.all()[2].message, Catch::Contains("not found (hint"));
+
+  // What the loader recorded (BehaviorCatalog::attachedScripts) is attached, every behavior of the file.
+  BehaviorCatalog catalog = builtinCatalog();
+  catalog.attachedScripts[mine] = {"locationRandomizer", "lookAtBehavior"};
+  usd::ComposedStage one = composeText("#usda 1.0\ndef Cube \"Box\"\n{\n    asset[] omni:scripting:scripts = [@" + mine + "@]\n}\n");
+  Stage stage;
+  stage.definePrim("/Mnt", PrimType::Xform);
+  Prim& box = stage.definePrim("/Mnt/Box", PrimType::Cube);
+  Diagnostics diag;
+  UsdImportReport report;
+  importUsdPrimLabels(one, *one.prim("/Box"), box, [](const std::string& p) { return "/Mnt" + p; }, catalog, {},
+                      report, diag);
+  CHECK_FALSE(diag.hasErrors());
+  CHECK(box.behaviors() == std::vector<std::string>{"locationRandomizer", "lookAtBehavior"});
 
   // Without builtinsForIsaacScripts, Isaac's own scripts are not stand-ins.
   usd::ComposedStage isaac = composeText(R"(#usda 1.0
