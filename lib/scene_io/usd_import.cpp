@@ -136,7 +136,8 @@ class Importer {
   void expandInstancers() {
     expandPointInstancers(
         instancers_, stage_, [this](const std::string& s) { return mapPath(s); },
-        [this](const SourceLoc& loc, const std::string& key, const std::string& m) { warnOnce(loc, key, m); }, diag_);
+        [this](const SourceLoc& loc, const std::string& key, const std::string& m) { warnOnce(loc, key, m); },
+        usdAnimationClock(composed_), diag_);
   }
 
   // Skinned meshes (usd_skel.h) once every skeleton is on the stage, before

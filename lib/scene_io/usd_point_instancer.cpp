@@ -89,8 +89,9 @@ void copyPrimContent(const Prim& from, Prim& to) {
 class Expander {
  public:
   Expander(Stage& stage, const std::function<std::string(const std::string&)>& mapPath,
-           const std::function<void(const SourceLoc&, const std::string&, const std::string&)>& warn, Diagnostics& diag)
-      : stage_(stage), mapPath_(mapPath), warn_(warn), diag_(diag) {}
+           const std::function<void(const SourceLoc&, const std::string&, const std::string&)>& warn,
+           const AnimationClock& clock, Diagnostics& diag)
+      : stage_(stage), mapPath_(mapPath), warn_(warn), clock_(clock), diag_(diag) {}
 
   void expand(const usd::ComposedPrim& composed) {
     std::optional<PointInstancerData> data = readPointInstancer(composed, diag_);
@@ -177,8 +178,10 @@ class Expander {
     if (proto.typeInfo().xformable)
       for (const XformOp& op : proto.xformOps()) ops.push_back(op);
     root.xformOps() = std::move(ops);
-    if (!data.velocities.empty())
+    if (!data.velocities.empty()) {
       root.setAttribute(kVelocityAttribute, Value::makeVector3d(data.velocities[i]), true);
+      if (data.velocities[i] != Vec3d::Zero()) moveAtVelocity(root, data.positions[i], data.velocities[i]);
+    }
     // The descendants, parents before children, at the same relative paths.
     const std::string& from = proto.path();
     for (const Prim* p : stage_.subtree(const_cast<Prim&>(proto))) {
@@ -188,9 +191,27 @@ class Expander {
     }
   }
 
+  // USD moves an instance at its velocity (units per second) from the
+  // sample its position was read at: its translate is a line through the
+  // start time code, extrapolated on the timeline (stage_animation.h), so
+  // poses, motion vectors and flow follow.
+  void moveAtVelocity(const Prim& root, const Vec3d& position, const Vec3d& velocity) {
+    AnimatedValue track;
+    track.primPath = root.path();
+    track.name = root.xformOps().front().attributeName();
+    track.xformOp = true;
+    track.clock = clock_;
+    track.extrapolate = true;
+    track.times = {clock_.startTimeCode, clock_.startTimeCode + 1.0};
+    track.values = {Value::makeDouble3(position), Value::makeDouble3(position + velocity / clock_.timeCodesPerSecond)};
+    track.imported = track.values.front();
+    stage_.animation().add(std::move(track));
+  }
+
   Stage& stage_;
   const std::function<std::string(const std::string&)>& mapPath_;
   const std::function<void(const SourceLoc&, const std::string&, const std::string&)>& warn_;
+  AnimationClock clock_;
   Diagnostics& diag_;
   size_t totalAdded_ = 0;
   // Prototype root -> its authored visibility before it was hidden.
@@ -292,8 +313,8 @@ std::optional<Vec3d> instanceVelocity(const Prim& prim) {
 void expandPointInstancers(const std::vector<const usd::ComposedPrim*>& instancers, Stage& stage,
                            const std::function<std::string(const std::string&)>& mapPath,
                            const std::function<void(const SourceLoc&, const std::string&, const std::string&)>& warn,
-                           Diagnostics& diag) {
-  Expander expander(stage, mapPath, warn, diag);
+                           const AnimationClock& clock, Diagnostics& diag) {
+  Expander expander(stage, mapPath, warn, clock, diag);
   // Imported parents first: reversed, an instancer inside another's
   // prototype is expanded before the copies of that prototype are made.
   for (auto it = instancers.rbegin(); it != instancers.rend(); ++it) expander.expand(**it);

@@ -18,7 +18,12 @@
 // are made invisible where they stand (they stay on the stage, so material
 // bindings into them hold). Instances whose id is in `invisibleIds` are
 // copied and invisible; those in the `inactiveIds` metadata are not copied.
-// `velocities` are kept on each instance (instanceVelocity()).
+// `velocities` are kept on each instance (instanceVelocity()), and an
+// instance with one moves at it on the timeline, as USD extrapolates
+// positions from their sample: xformOp:translate:instance is animated
+// (stage_animation.h, `clock`: the stage's time codes), so motion vectors
+// and flow show it. Copies of a prototype that holds an instancer do not
+// move (the animation belongs to the instances first expanded).
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -28,6 +33,7 @@
 
 #include "core/diagnostics.h"
 #include "stage/stage.h"
+#include "stage/stage_animation.h"
 #include "usd/compose.h"
 
 namespace sdg {
@@ -74,6 +80,6 @@ std::optional<Vec3d> instanceVelocity(const Prim& prim);
 void expandPointInstancers(const std::vector<const usd::ComposedPrim*>& instancers, Stage& stage,
                            const std::function<std::string(const std::string&)>& mapPath,
                            const std::function<void(const SourceLoc&, const std::string&, const std::string&)>& warn,
-                           Diagnostics& diag);
+                           const AnimationClock& clock, Diagnostics& diag);
 
 }  // namespace sdg

@@ -58,6 +58,12 @@ std::optional<Value> interpolate(const Value& a, const Value& b, double t) {
 Value AnimatedValue::at(double timeCode) const {
   auto upper = std::upper_bound(times.begin(), times.end(), timeCode);
   if (upper == times.begin()) return values.front();
+  if (upper == times.end() && extrapolate && times.size() >= 2 && timeCode > times.back()) {
+    const size_t n = times.size();
+    const double t = (timeCode - times[n - 2]) / (times[n - 1] - times[n - 2]);
+    if (std::optional<Value> line = interpolate(values[n - 2], values[n - 1], t)) return std::move(*line);
+    return values.back();
+  }
   const size_t lo = static_cast<size_t>(upper - times.begin()) - 1;
   if (upper == times.end() || times[lo] == timeCode) return values[lo];
   const double t = (timeCode - times[lo]) / (times[lo + 1] - times[lo]);

@@ -41,9 +41,13 @@ struct AnimatedValue {
   // What the import wrote there (the start time code's value; nullopt:
   // nothing). A scene that changed it since overrides the samples.
   std::optional<Value> imported;
+  // Past the last time, continue the line through the last two samples
+  // (linear types only) instead of holding: a USD PointInstancer's
+  // positions moving at their authored velocities.
+  bool extrapolate = false;
 
   // The value at `timeCode`: held before the first and after the last
-  // time; between two, linear for numbers, vectors, matrices and numeric
+  // time (unless `extrapolate`); between two, linear for numbers, vectors, matrices and numeric
   // arrays of equal length, spherical for quaternions, held for the rest
   // (bool, int, tokens, strings, int arrays), as USD interpolates.
   Value at(double timeCode) const;

@@ -7,7 +7,8 @@
                                      prototype's class, the turned and stretched instance 14 has a
                                      taller box than instance 10, and no labelled pixel lies outside
                                      the instances' boxes: the prototypes are not drawn where they
-                                     stand (in view, above the row).
+                                     stand (in view, above the row). With motion vectors, instance
+                                     11 (velocity 0.5 along x) moves and instance 10 (none) does not.
 """
 import json
 import os
@@ -70,6 +71,31 @@ def main():
         check(labelled.sum() > 300, f"only {labelled.sum()} labelled pixels")
         check((labelled & ~inside).sum() == 0,
               f"{(labelled & ~inside).sum()} labelled pixels outside the instances' boxes (a prototype drawn in place?)")
+
+        # Velocities move instances on the timeline: instance 11 (0.5 units/s along x) has motion
+        # vectors along x, instance 10 (still) has none.
+        moving = os.path.join(tmp, "moving")
+        result = subprocess.run([binary, "run", scene, "--frames", "3", "--out", moving,
+                                 "--set", "writer.motion_vectors=true"], capture_output=True, text=True, timeout=300)
+        check(result.returncode == 0, f"run instancer.usda with motion vectors: exit {result.returncode}: {result.stderr}")
+        if result.returncode == 0:
+            motion = np.load(os.path.join(moving, "motion_vectors_0002.npy"))
+            boxes2 = np.load(os.path.join(moving, "bounding_box_2d_tight_0002.npy"))
+            paths2 = json.load(open(os.path.join(moving, "bounding_box_2d_tight_prim_paths_0002.json")))
+            inside_of = {p: b for p, b in zip(paths2, boxes2)}
+
+            def mean_abs_x(path):
+                b = inside_of[path]
+                window = motion[int(b["y_min"]):int(b["y_max"]) + 1, int(b["x_min"]):int(b["x_max"]) + 1, 0]
+                return float(np.abs(window).mean())
+
+            if "/World/Scatter/instance_11" in inside_of and "/World/Scatter/instance_10" in inside_of:
+                still, moved = mean_abs_x("/World/Scatter/instance_10"), mean_abs_x("/World/Scatter/instance_11")
+                print(f"motion along x: moving {moved:.4f}, still {still:.6f}")
+                check(moved > 0.01 and still < 1e-6,
+                      f"motion vectors along x: {moved} in moving instance 11, {still} in still instance 10")
+            else:
+                check(False, f"frame 2's boxes {paths2} lack instances 10 and 11")
     return finish()
 
 

@@ -240,6 +240,26 @@ def Xform "W"
   CHECK_FALSE(instanceVelocity(*in.stage.find("/W/P/Protos/Rock")));
 }
 
+TEST_CASE("point instancer: instances move at their velocities on the timeline", "[scene_io][usd][instancer]") {
+  // 24 time codes a second: a velocity of (2, 0, 0) units a second moves an
+  // instance 1 unit every 12 time codes from the start time code, as USD
+  // extrapolates positions from their sample; a zero velocity stays still.
+  Imported in;
+  importText(oneInstancer(R"(        int[] protoIndices = [0, 0]
+        point3f[] positions = [(0, 0, 0), (5, 0, 0)]
+        vector3f[] velocities = [(2, 0, 0), (0, 0, 0)]
+)"), in);
+  INFO(errors(in.diag));
+  REQUIRE_FALSE(in.diag.hasErrors());
+  const AnimatedValue* moving = in.stage.animation().find("/W/P/instance_0", "xformOp:translate:instance");
+  REQUIRE(moving != nullptr);
+  CHECK(moving->xformOp);
+  CHECK(moving->at(0.0).get<Vec3d>().isApprox(Vec3d(0, 0, 0)));
+  CHECK(moving->at(12.0).get<Vec3d>().isApprox(Vec3d(1, 0, 0)));
+  CHECK(moving->at(48.0).get<Vec3d>().isApprox(Vec3d(4, 0, 0)));  // past the two samples: still on the line
+  CHECK(in.stage.animation().find("/W/P/instance_1", "xformOp:translate:instance") == nullptr);
+}
+
 TEST_CASE("point instancer: an instancer inside a prototype is expanded in every copy", "[scene_io][usd][instancer]") {
   Imported in;
   importText(R"(#usda 1.0
