@@ -71,9 +71,15 @@ bool importDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProp
     diag.warning(p.loc, prim.path + "." + p.name + ": a " + std::string(primTypeInfo(type).name) +
                             " is generated, not read, so its " + authoredInterpolation(p) +
                             " colours cannot follow its faces; drawn with the first item");
-  // The first element: through the indices when indexed.
+  // The first element: through the indices when indexed (an empty index
+  // list is no indexing, as in USD).
   size_t item = 0;
-  if (const usd::ComposedProperty* ix = prim.property(p.name + ":indices"); ix && !ix->value.empty()) {
+  const usd::ComposedProperty* ix = prim.property(p.name + ":indices");
+  if (ix && !ix->value.empty() && (!usd::isNumeric(ix->value.kind) || usd::componentCount(ix->value.kind) != 1)) {
+    diag.error(ix->loc, prim.path + "." + p.name + ":indices: expected int[], found " + ix->typeName);
+    return true;
+  }
+  if (ix && !ix->value.numbers.empty()) {
     const double first = ix->value.numbers[0];
     if (first < 0 || first * double(width) >= double(values.size())) {
       diag.error(ix->loc, prim.path + "." + p.name + ":indices: " + std::to_string(int64_t(first)) +

@@ -187,6 +187,36 @@ def Cube "Box"
   CHECK(warned);
 }
 
+TEST_CASE("usd display primvars: a generated gprim's empty or non-integer indices (found by fuzzing)",
+          "[usd_import][display_primvars]") {
+  SECTION("an empty index list is no indexing") {
+    Imported in;
+    importText(R"(#usda 1.0
+def Cube "Box"
+{
+    color3f[] primvars:displayColor = [(0, 0, 1)]
+    int[] primvars:displayColor:indices = []
+}
+)",
+               in);
+    REQUIRE(errors(in.diag).empty());
+    CHECK(in.stage.find("/Box")->value("primvars:displayColor")->get<Vec3f>().isApprox(Vec3f(0, 0, 1)));
+  }
+  SECTION("indices that are not integers are a located error") {
+    Imported in;
+    importText(R"(#usda 1.0
+def Cube "Box"
+{
+    color3f[] primvars:displayColor = [(0, 0, 1)]
+    string[] primvars:displayColor:indices = ["a"]
+}
+)",
+               in);
+    CHECK_THAT(errors(in.diag), Catch::Contains("/v/scene.usda:5:5") &&
+                                    Catch::Contains("/Box.primvars:displayColor:indices: expected int[], found string[]"));
+  }
+}
+
 TEST_CASE("usd display primvars: a GeomSubset keeps its own faces' colours", "[usd_import][display_primvars]") {
   Imported in;
   importText(twoQuads(R"(    color3f[] primvars:displayColor = [(1, 0, 0), (0, 1, 0)] (interpolation = "uniform")
