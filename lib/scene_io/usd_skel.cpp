@@ -280,8 +280,9 @@ class SkelPoser {
       return true;
     };
     const size_t errorsBefore = diag_.errorCount();
-    if (!readMatrices("bindTransforms", b.bind) && diag_.errorCount() == errorsBefore) {
-      diag_.error(skeleton->loc, skeletonPath + ".bindTransforms: a Skeleton needs its bind transforms (matrix4d[])");
+    if (!readMatrices("bindTransforms", b.bind)) {
+      if (diag_.errorCount() == errorsBefore)
+        diag_.error(skeleton->loc, skeletonPath + ".bindTransforms: a Skeleton needs its bind transforms (matrix4d[])");
       return nullptr;
     }
     if (!readMatrices("restTransforms", b.rest)) {
