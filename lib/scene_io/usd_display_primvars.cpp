@@ -6,15 +6,10 @@
 // usd_geometry.cpp like normals and uvs. Other gprims (Cube, Sphere, ...)
 // are generated here, not read: they keep the first item, with a warning.
 #include "scene_io/usd_import_internal.h"
+#include "scene_io/usd_mesh_topology.h"
 
 namespace sdg::usd_map {
 namespace {
-
-std::string authoredInterpolation(const usd::ComposedProperty& p) {
-  auto it = p.metadata.find("interpolation");
-  if (it != p.metadata.end() && usd::isText(it->second.kind) && !it->second.strings.empty()) return it->second.strings[0];
-  return "";
-}
 
 size_t widthOf(const std::string& name) { return name == "primvars:displayColor" ? 3 : 1; }
 
@@ -33,14 +28,14 @@ bool isDisplayPrimvar(const std::string& name) {
 
 bool isVaryingDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProperty& p) {
   if (!isDisplayPrimvar(p.name) || p.value.empty()) return false;
-  const std::string interpolation = authoredInterpolation(p);
+  const std::string interpolation = primvarInterpolation(p);
   if (!interpolation.empty()) return interpolation != "constant";
   return elementCount(prim, p) > 1;
 }
 
 std::optional<std::string> displayPrimvarInterpolation(const usd::ComposedPrim& mesh, const usd::ComposedProperty& p,
                                                        size_t faces, size_t points, size_t corners, Diagnostics& diag) {
-  if (std::string authored = authoredInterpolation(p); !authored.empty()) return authored;
+  if (std::string authored = primvarInterpolation(p); !authored.empty()) return authored;
   // Unauthored means constant in USD, but files written without it by
   // other tools hold one item per point, face-vertex or face: the count
   // says which (points first, as USD's own fallback for geometry).
@@ -69,7 +64,7 @@ bool importDisplayPrimvar(const usd::ComposedPrim& prim, const usd::ComposedProp
   if (varying && type == PrimType::Mesh) return true;  // per face-vertex: usd_geometry.cpp
   if (varying)
     diag.warning(p.loc, prim.path + "." + p.name + ": a " + std::string(primTypeInfo(type).name) +
-                            " is generated, not read, so its " + authoredInterpolation(p) +
+                            " is generated, not read, so its " + primvarInterpolation(p) +
                             " colours cannot follow its faces; drawn with the first item");
   // The first element: through the indices when indexed (an empty index
   // list is no indexing, as in USD).

@@ -11,12 +11,6 @@
 namespace sdg::usd_map {
 namespace {
 
-std::string interpolationOf(const usd::ComposedProperty& p) {
-  auto it = p.metadata.find("interpolation");
-  if (it != p.metadata.end() && usd::isText(it->second.kind) && !it->second.strings.empty()) return it->second.strings[0];
-  return "";
-}
-
 // The primvar holding texture coordinates: primvars:st, else the first
 // texCoord2f[] / float2[] primvar (st0, UVMap, ...).
 const usd::ComposedProperty* uvPrimvar(const usd::ComposedPrim& mesh) {
@@ -39,8 +33,7 @@ struct Topology {
 std::vector<float> perCorner(const usd::ComposedPrim& mesh, const usd::ComposedProperty& p, size_t width,
                              const std::string& fallback, const Topology& topo, const std::vector<size_t>& faces,
                              size_t points, Diagnostics& diag) {
-  std::string interpolation = interpolationOf(p);
-  if (interpolation.empty()) interpolation = fallback;
+  const std::string interpolation = primvarInterpolation(p, fallback);
   const std::vector<double>& values = p.value.numbers;
   const size_t items = values.size() / width;
   std::vector<int64_t> index;  // indexed primvar: item of each element

@@ -42,11 +42,6 @@ SourceLoc locOf(const usd::ComposedPrim& prim, const usd::ComposedProperty* p) {
   return p && p->loc.known() ? p->loc : prim.loc;
 }
 
-std::string interpolationOf(const usd::ComposedProperty& p, const std::string& fallback) {
-  auto it = p.metadata.find("interpolation");
-  if (it != p.metadata.end() && usd::isText(it->second.kind) && !it->second.strings.empty()) return it->second.strings[0];
-  return fallback;
-}
 
 struct MeshSizes {
   size_t points = 0, faces = 0, faceVertices = 0;
@@ -69,7 +64,7 @@ bool checkIndices(const usd::ComposedPrim& mesh, const usd::ComposedProperty& ix
 // inside its values.
 bool checkPrimvar(const usd::ComposedPrim& mesh, const usd::ComposedProperty& p, const std::string& fallback,
                   const MeshSizes& sizes, Diagnostics& diag) {
-  const std::string interpolation = interpolationOf(p, fallback);
+  const std::string interpolation = primvarInterpolation(p, fallback);
   size_t expected = 0;
   std::string per;
   if (interpolation == "constant") expected = 1, per = "one value";
@@ -215,6 +210,12 @@ std::optional<std::vector<int32_t>> subsetFaces(const usd::ComposedPrim& subset,
                                          number(v[first]) + " at [" + count(first) + "]" +
                                          ofWhich(bad, v.size(), "indices"));
   return std::nullopt;
+}
+
+std::string primvarInterpolation(const usd::ComposedProperty& p, const std::string& fallback) {
+  auto it = p.metadata.find("interpolation");
+  if (it != p.metadata.end() && usd::isText(it->second.kind) && !it->second.strings.empty()) return it->second.strings[0];
+  return fallback;
 }
 
 }  // namespace sdg::usd_map

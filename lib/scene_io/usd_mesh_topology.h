@@ -34,6 +34,9 @@ namespace sdg::usd_map {
 // mesh can be imported as it is.
 bool checkMeshTopology(const usd::ComposedPrim& mesh, Diagnostics& diag);
 
+// A primvar's authored `interpolation` metadata; `fallback` when it has none.
+std::string primvarInterpolation(const usd::ComposedProperty& p, const std::string& fallback = "");
+
 // The faces a GeomSubset's `indices` name, each a whole number inside the
 // mesh's `faceCount` faces; nullopt after reporting one that is not (at the
 // subset's `indices`, naming the mesh).

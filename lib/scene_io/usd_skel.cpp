@@ -6,6 +6,7 @@
 #include <optional>
 #include <set>
 
+#include "scene_io/usd_mesh_topology.h"
 #include "stage/path.h"
 
 namespace sdg {
@@ -55,12 +56,6 @@ bool underSkelRoot(const ComposedStage& composed, std::string path) {
     path = std::string(path::parent(path));
   }
   return false;
-}
-
-std::string metadataToken(const ComposedProperty& p, const char* key) {
-  auto it = p.metadata.find(key);
-  if (it == p.metadata.end() || !usd::isText(it->second.kind) || it->second.strings.empty()) return "";
-  return it->second.strings[0];
 }
 
 int elementSize(const ComposedProperty& p) {
@@ -350,7 +345,7 @@ class SkelPoser {
       return in;
     }
     in.perPoint = elementSize(*indices);
-    in.rigid = metadataToken(*indices, "interpolation") == "constant";
+    in.rigid = usd_map::primvarInterpolation(*indices) == "constant";
     if (in.perPoint < 1 || elementSize(*weights) != in.perPoint) {
       diag_.error(weights->loc, mesh.path + ": primvars:skel:jointWeights has elementSize " +
                                     std::to_string(elementSize(*weights)) + ", jointIndices " +
