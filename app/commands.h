@@ -70,6 +70,7 @@ void addMerge(CLI::App& app, int& exitCode);
 void addNewBehavior(CLI::App& app, int& exitCode);
 void addFlatten(CLI::App& app, int& exitCode);
 void addExportUsd(CLI::App& app, int& exitCode);
+void addExec(CLI::App& app, int& exitCode);
 void addStudio(CLI::App& app, int& exitCode);
 
 }  // namespace sdg::cli

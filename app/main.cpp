@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   cli::addInspect(app, exitCode);
   cli::addFlatten(app, exitCode);
   cli::addExportUsd(app, exitCode);
+  cli::addExec(app, exitCode);
   cli::addSchema(app, exitCode);
   cli::addDescribe(app, exitCode);
   cli::addRun(app, exitCode);

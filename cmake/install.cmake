@@ -106,3 +106,10 @@ endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/python/sdgbehave DESTINATION ${SDG_PYTHON_INSTALL_DIR}
         COMPONENT python FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
 file(CREATE_LINK ${PROJECT_SOURCE_DIR}/python ${PROJECT_BINARY_DIR}/python SYMBOLIC)
+
+# The stand-in Isaac asset root `sdgbehave exec` answers get_assets_root_path()
+# with (found as <prefix>/share/sdgbehave/scenes/isaac-stand-in), and the
+# project's props and textures its layers name relative to themselves.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/isaac-stand-in ${PROJECT_SOURCE_DIR}/scenes/props
+                  ${PROJECT_SOURCE_DIR}/scenes/textures
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/sdgbehave/scenes)

@@ -59,6 +59,18 @@ void BehaviorRuntime::init() {
   for (auto& b : behaviors_) callHook(*b, "on_init", [&] { b->onInit(); });
 }
 
+void BehaviorRuntime::attach(Prim& prim, const std::string& name) {
+  const BehaviorSpec* spec = registry_.catalog().find(name);
+  std::unique_ptr<Behavior> behavior = registry_.create(name);
+  if (!spec || !behavior) throw std::logic_error("behavior " + name + " is not registered");
+  createExposedVariables(prim, *spec);
+  behavior->bind(prim, *spec, context_);
+  Behavior& b = *behavior;
+  behaviors_.push_back(std::move(behavior));
+  callHook(b, "on_init", [&] { b.onInit(); });
+  if (timeline_.playing()) callHook(b, "on_play", [&] { b.onPlay(); });
+}
+
 void BehaviorRuntime::play() {
   if (!timeline_.play()) return;
   notePhase(activity::Phase::Frame, timeline_.steps());

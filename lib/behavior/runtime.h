@@ -29,6 +29,10 @@ class BehaviorRuntime {
 
   // Instantiates every attached behavior and calls onInit.
   void init();
+  // Attaches behavior `name` to `prim` after init (a driver program listing
+  // a script on a prim, `sdgbehave exec`): its exposed variables, onInit,
+  // and onPlay when the timeline plays.
+  void attach(Prim& prim, const std::string& name);
   void play();
   void pause();
   // Delivers the events still queued (the timeline still playing), then

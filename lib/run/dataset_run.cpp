@@ -126,17 +126,25 @@ std::vector<std::string> productNamesOf(const std::vector<std::string>& cameraPa
   return names;
 }
 
+}  // namespace
+
 // A run with pixels, in the order it happens: prepare (products, writers,
 // folder, renderer), then per iteration the pre-roll and the timeline, per
 // frame one render of every product whose read-back overlaps the next draw,
-// each collected product submitted to the write pool; then finish.
+// each collected product submitted to the write pool; then finish. In
+// capture mode (DatasetCapture) the caller drives the stage and says when
+// a frame is taken.
 class DatasetRun {
  public:
-  DatasetRun(LoadedScene& loaded, const DatasetRunOptions& options)
+  DatasetRun(LoadedScene& loaded, const DatasetRunOptions& options, bool captureMode = false)
       : loaded_(loaded), scene_(loaded.scene), options_(options), plan_(options.plan),
-        sceneLoc_{loaded.scene.sourcePath, 0, 0}, original_(loaded.scene.stage) {}
+        sceneLoc_{loaded.scene.sourcePath, 0, 0}, original_(loaded.scene.stage), capture_(captureMode) {}
 
   DatasetRunResult run();
+  void prepareCapture() { prepare(); }
+  void captureFrame();
+  DatasetRunResult finishCapture();
+  uint64_t captured() const { return captured_; }
 
  private:
   void prepare();
@@ -185,6 +193,9 @@ class DatasetRun {
   std::unique_ptr<Progress> progress_;
   std::unique_ptr<ChangeRecorder> recorder_;
   const Stage original_;
+  const bool capture_;
+  uint64_t captured_ = 0;
+  std::shared_ptr<const RenderList> previousCapture_;
   // A product drawn and queued for read-back, waiting to be collected.
   struct Pending {
     std::shared_ptr<ProductFrame> frame;
@@ -223,8 +234,8 @@ void DatasetRun::prepare() {
 
   info_.sceneHash = fileHash(scene_.sourcePath);
   info_.seed = options_.seed;
-  info_.iterations = plan_.iterations;
-  info_.framesPerIteration = plan_.framesPerIteration;
+  info_.iterations = capture_ ? 1 : plan_.iterations;
+  info_.framesPerIteration = capture_ ? 0 : plan_.framesPerIteration;  // capture: counted at the end
   info_.width = settings_.width;
   info_.height = settings_.height;
   info_.products = productNames_;
@@ -267,7 +278,7 @@ void DatasetRun::prepare() {
     return makeColorRenderer(inputs, setting);
   });
   sheetFrames_ = info_.contactSheet ? contactSheetFrames(info_.frames()) : std::set<uint64_t>{};
-  const uint64_t owned = plan_.ownedEnd() - plan_.ownedBegin();
+  const uint64_t owned = capture_ ? 0 : plan_.ownedEnd() - plan_.ownedBegin();
   for (uint64_t f = plan_.ownedBegin(); f < plan_.ownedEnd(); ++f) result_.resumedFrames += finished_.count(f);
   progress_ = std::make_unique<Progress>(owned - result_.resumedFrames, options_.progress);
   // At most the pool's queue plus its workers plus two read-back slots of
@@ -519,7 +530,7 @@ void DatasetRun::finish() {
   result_.backend = context.backend();
   result_.device = context.device();
   bringUp_->retireInBackground();
-  scene_.stage = original_;
+  if (!capture_) scene_.stage = original_;
   if (recorder_) recorder_->close();
   pool_->finish();
   uint64_t written = encoder_->datasetFiles + runFiles_ + result_.simulationFrames * cameraPaths_.size();
@@ -545,10 +556,48 @@ DatasetRunResult DatasetRun::run() {
   return result_;
 }
 
-}  // namespace
+void DatasetRun::captureFrame() {
+  const uint64_t frame = captured_++;
+  if (!saidNoLabels_) checkLabels();
+  std::shared_ptr<const RenderList> current;
+  if (writers_.needs.motion) {
+    current = std::make_shared<const RenderList>(buildRenderList(scene_.stage));
+    resolveNext(current);
+  }
+  try {
+    renderFrame(bringUp_->renderer(), frame, 0, 0, previousCapture_, current);
+  } catch (...) {
+    keepFinishedFramesAfterFailure();
+    throw;
+  }
+  previousCapture_ = std::move(current);
+}
+
+DatasetRunResult DatasetRun::finishCapture() {
+  if (writers_.needs.motion) resolveNext(nullptr);  // the last frame has no next
+  info_.framesPerIteration = captured_;
+  result_.info = info_;
+  recordRunInfo(options_.outDir, info_);
+  finish();
+  return result_;
+}
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options) {
   return DatasetRun(loaded, options).run();
 }
+
+DatasetCapture::DatasetCapture(LoadedScene& loaded, DatasetRunOptions options)
+    : options_(std::make_unique<DatasetRunOptions>(std::move(options))),
+      run_(std::make_unique<DatasetRun>(loaded, *options_, true)) {
+  run_->prepareCapture();
+}
+
+DatasetCapture::~DatasetCapture() = default;
+
+void DatasetCapture::capture() { run_->captureFrame(); }
+
+uint64_t DatasetCapture::frames() const { return run_->captured(); }
+
+DatasetRunResult DatasetCapture::finish() { return run_->finishCapture(); }
 
 }  // namespace sdg

@@ -11,6 +11,7 @@
 // writers come from the registry (writers/writer_registry.h); what they
 // need decides the passes read back.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -58,5 +59,30 @@ struct DatasetRunResult {
 };
 
 DatasetRunResult runDataset(LoadedScene& loaded, const DatasetRunOptions& options);
+
+class DatasetRun;
+
+// Frames taken when something else says so (`sdgbehave exec`: Replicator's
+// orchestrator.step from a driver program): the loaded scene's stage as it
+// stands at each capture() is the next frame, rendered and written as a
+// run's frames are (the writers, products and resolution from the loaded
+// scene and `options.render`; no pre-roll, no behaviors: the caller drives
+// the stage). finish() writes what is queued and finalizes the folder, whose
+// run.json then records the frames taken. `options.plan` is not used.
+class DatasetCapture {
+ public:
+  DatasetCapture(LoadedScene& loaded, DatasetRunOptions options);
+  ~DatasetCapture();
+  DatasetCapture(const DatasetCapture&) = delete;
+  DatasetCapture& operator=(const DatasetCapture&) = delete;
+
+  void capture();
+  uint64_t frames() const;
+  DatasetRunResult finish();
+
+ private:
+  std::unique_ptr<DatasetRunOptions> options_;
+  std::unique_ptr<DatasetRun> run_;
+};
 
 }  // namespace sdg

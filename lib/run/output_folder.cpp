@@ -58,6 +58,10 @@ RunInfo RunInfo::fromJson(const nlohmann::json& j) {
   return info;
 }
 
+void recordRunInfo(const std::string& dir, const RunInfo& info) {
+  writeFileAtomic(runInfoPath(dir), info.toJson().dump(2) + "\n");
+}
+
 RunInfo readRunInfo(const std::string& dir) {
   std::ifstream in(runInfoPath(dir));
   if (!in) throw RunError(dir + " holds no sdgbehave run (" + runInfoPath(dir) + " is missing)");

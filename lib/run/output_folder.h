@@ -46,6 +46,8 @@ struct FolderPolicy {
 // Creates the folder or checks that this run may use it, then records
 // `info` (SceneError for a folder holding something else, exit 2).
 void prepareOutputFolder(const std::string& dir, const RunInfo& info, const FolderPolicy& policy);
+// Records `info` again (a capture's frames are counted at its end).
+void recordRunInfo(const std::string& dir, const RunInfo& info);
 RunInfo readRunInfo(const std::string& dir);  // RunError when absent or corrupt
 // Shards that started together can each find the folder empty; every shard
 // therefore also records its own inputs (.sdgbehave/inputs.<tag>.json).

@@ -28,8 +28,13 @@ BehaviorRegistry registryWithPlugins(const std::vector<std::string>& plugins, co
   BehaviorRegistry registry = builtinRegistry();
   for (size_t i = 0; i < plugins.size(); ++i)
     registry.loadPlugin(plugins[i], SourceLoc{"--plugin[" + std::to_string(i + 1) + "]", 0, 0});
-  for (size_t i = 0; i < scripts.size(); ++i)
-    scripting::loadScript(registry, scripts[i], SourceLoc{"--script[" + std::to_string(i + 1) + "]", 0, 0});
+  Diagnostics failed;  // every --script that does not load, not only the first
+  for (size_t i = 0; i < scripts.size(); ++i) try {
+      scripting::loadScript(registry, scripts[i], SourceLoc{"--script[" + std::to_string(i + 1) + "]", 0, 0});
+    } catch (const SceneError& e) {
+      for (const Diagnostic& d : e.problems()) failed.error(d.loc, d.message);
+    }
+  failed.throwIfErrors();
   return registry;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 
 #include "core/log.h"
 #include "core/text.h"
@@ -68,22 +69,37 @@ SceneSourceRead readYamlScene(const SceneSource& source, SceneScriptHost& host) 
   SceneDocument doc = source.text ? sceneDocumentFromText(*source.text, source.path) : readSceneDocument(source.path);
   SceneSourceRead read;
   const fs::path sceneDir = fs::path(source.path).parent_path();
-  for (const DeclaredFile& script : declaredFiles(doc, "scripts")) {
-    read.scriptFiles.push_back(existingDeclaredFile(sceneDir, script, "scripts: behavior script"));
-    host.loadScript(read.scriptFiles.back(), script.loc);
-  }
-  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins")) {
-    read.pluginFiles.push_back(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"));
-    host.loadPlugin(read.pluginFiles.back(), plugin.loc);
-  }
+  // Every script is tried before giving up, so that one run of validate
+  // names every script that does not load (prims cannot be read without
+  // their behaviors, so loading stops after the scripts).
+  Diagnostics failed;
+  auto attempt = [&failed](const std::function<void()>& load) {
+    try {
+      load();
+    } catch (const SceneError& e) {
+      for (const Diagnostic& d : e.problems()) failed.error(d.loc, d.message);
+    }
+  };
+  for (const DeclaredFile& script : declaredFiles(doc, "scripts"))
+    attempt([&] {
+      read.scriptFiles.push_back(existingDeclaredFile(sceneDir, script, "scripts: behavior script"));
+      host.loadScript(read.scriptFiles.back(), script.loc);
+    });
+  for (const DeclaredFile& plugin : declaredFiles(doc, "plugins"))
+    attempt([&] {
+      read.pluginFiles.push_back(existingDeclaredFile(sceneDir, plugin, "plugins: plugin library"));
+      host.loadPlugin(read.pluginFiles.back(), plugin.loc);
+    });
   host.sceneIsaacScripts(isaacScriptSetting(doc.root));
-  for (const ListedScript& listed : listedScriptFiles(doc.root)) host.attach(listed.path, listed.loc);
+  for (const ListedScript& listed : listedScriptFiles(doc.root)) attempt([&] { host.attach(listed.path, listed.loc); });
   AssetLibrary assetLibrary(buildAssetScene, source.assetTexts);
-  for (const DeclaredFile& script : assetLibrary.preload(doc)) {
-    read.scriptFiles.push_back(script.path);
-    host.loadScript(script.path, script.loc);
-  }
-  for (const ListedScript& listed : assetLibrary.usdScripts()) host.attach(listed.path, listed.loc);
+  for (const DeclaredFile& script : assetLibrary.preload(doc))
+    attempt([&] {
+      read.scriptFiles.push_back(script.path);
+      host.loadScript(script.path, script.loc);
+    });
+  for (const ListedScript& listed : assetLibrary.usdScripts()) attempt([&] { host.attach(listed.path, listed.loc); });
+  failed.throwIfErrors();
   read.scene = buildScene(doc, host.catalog(), source.overrides, &assetLibrary);
   read.mountedFiles = assetLibrary.files();
   read.dropped = assetLibrary.usdLosses().warnings();

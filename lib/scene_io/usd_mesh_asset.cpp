@@ -1,5 +1,7 @@
 #include "scene_io/usd_mesh_asset.h"
 
+#include <filesystem>
+
 #include "assets/inline_mesh.h"
 #include "assets/mesh_loader.h"
 #include "core/diagnostics.h"
@@ -56,6 +58,23 @@ void append(MeshData& out, const MeshData& m, const Matrix4d& world, MeshPart pa
   out.parts.push_back(part);
 }
 
+// A mesh file's whole mesh (every part, with its own material) under `world`.
+void appendFile(MeshData& out, const MeshData& m, const Matrix4d& world) {
+  MeshData slice;
+  slice.positions = m.positions;
+  slice.normals = m.normals;
+  slice.uvs = m.uvs;
+  slice.colors = m.colors;
+  for (const MeshPart& part : m.parts) {
+    slice.indices.assign(m.indices.begin() + part.firstIndex, m.indices.begin() + part.firstIndex + part.indexCount);
+    append(out, slice, world, part);
+  }
+}
+
+// How deep USD mesh files may name mesh files that are USD files again.
+constexpr int kMaxNestedMeshFiles = 8;
+thread_local int gNestedMeshFiles = 0;
+
 }  // namespace
 
 MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh) {
@@ -79,6 +98,24 @@ MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh) {
   stage.traverse([&](const Prim& prim) {
     if (prim.type() != PrimType::Mesh) return;
     if (!submesh.empty() && prim.path() != submesh && !prim.path().starts_with(submesh + "/")) return;
+    // A Mesh prim showing a mesh file (export-usd's sdgbehave:asset): that
+    // file's mesh, relative to this file's folder.
+    if (const Value* file = prim.value("asset"); file && !file->get<std::string>().empty()) {
+      std::filesystem::path named(file->get<std::string>());
+      if (named.is_relative()) named = std::filesystem::path(path).parent_path() / named;
+      if (gNestedMeshFiles >= kMaxNestedMeshFiles)
+        throw RunError(path + ": mesh files name each other more than " + std::to_string(kMaxNestedMeshFiles) +
+                       " deep (a cycle?)");
+      ++gNestedMeshFiles;
+      try {
+        appendFile(out, loadMeshFile(named.lexically_normal().string(), ""), stage.worldMatrix(prim));
+      } catch (...) {
+        --gNestedMeshFiles;
+        throw;
+      }
+      --gNestedMeshFiles;
+      return;
+    }
     // Drawn as authored: a mesh file's key carries no subdivision level.
     std::shared_ptr<const InlineMesh> mesh = inlineMeshOf(prim, 0);
     if (!mesh) return;

@@ -7,6 +7,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 
 #include "assets/asset_resolver.h"
@@ -19,6 +20,7 @@
 #include "scripting/python_host.h"
 #include "scripting/script_call.h"
 #include "scripting/script_context.h"
+#include "scripting/script_driver.h"
 #include "scripting/value_convert.h"
 #include "stage/look_at.h"
 #include "stage/path.h"
@@ -167,7 +169,7 @@ PrimHandle definePrim(StageHandle& s, const std::string& path, const std::string
   ScriptContext& ctx = *s.ctx;
   Stage& stage = ctx.liveStage();
   const std::string scope = std::string(kBehaviorsScope) + "/" + ctx.ns();
-  if (!path.starts_with(scope + "/"))
+  if (!ctx.driver && !path.starts_with(scope + "/"))
     throw py::value_error("define_prim: " + ctx.ns() + " creates prims under " + scope + "/, not at " + path);
   if (std::string why = path::whyInvalid(path); !why.empty()) throw py::value_error("define_prim: " + path + ": " + why);
   if (stage.find(path)) throw py::value_error("define_prim: " + path + " already exists (see next_free_path)");
@@ -182,10 +184,13 @@ PrimHandle definePrim(StageHandle& s, const std::string& path, const std::string
   for (std::string parent(path::parent(path)); parent.size() > 1 && !stage.find(parent);
        parent = std::string(path::parent(parent)))
     missing.push_back(parent);
-  for (auto it = missing.rbegin(); it != missing.rend(); ++it)
-    ctx.journal().created(stage.definePrim(*it, PrimType::Scope));
+  // (A driver's are its own: nothing undoes them.) USD's typeless ancestors are scopes here.
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    Prim& scope = stage.definePrim(*it, PrimType::Scope);
+    if (!ctx.driver) ctx.journal().created(scope);
+  }
   Prim& prim = stage.definePrim(path, *type);
-  ctx.journal().created(prim);
+  if (!ctx.driver) ctx.journal().created(prim);
   return PrimHandle{s.ctx, path};
 }
 
@@ -294,6 +299,7 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
         "eye == target.");
 
   bindPhysics(m);
+  bindDriver(m);
   py::class_<Rng>(m, "Rng", "A portable random stream (PCG32): the same draws on every machine.")
       .def("random", &Rng::uniform01, "A float in [0, 1).")
       .def("uniform", &Rng::uniform, py::arg("low") = 0.0, py::arg("high") = 1.0, "low + (high - low) * random().")
@@ -589,7 +595,27 @@ PYBIND11_EMBEDDED_MODULE(_sdgbehave, m) {
                              [](StageHandle& s) { return s.ctx->liveStage().metadata().metersPerUnit; })
       .def_property_readonly("up_axis", [](StageHandle& s) { return s.ctx->liveStage().metadata().upAxis; })
       .def_property_readonly("time_codes_per_second",
-                             [](StageHandle& s) { return s.ctx->liveStage().metadata().timeCodesPerSecond; });
+                             [](StageHandle& s) { return s.ctx->liveStage().metadata().timeCodesPerSecond; })
+      .def(
+          "set_metadata",
+          [](StageHandle& s, std::optional<std::string> upAxis, std::optional<double> metersPerUnit) {
+            if (!s.ctx->driver)
+              throw py::value_error("set_metadata: a behavior cannot change the stage's up axis or units");
+            StageMetadata& m = s.ctx->liveStage().metadata();
+            if (upAxis) {
+              if (*upAxis != "Y" && *upAxis != "Z")
+                throw py::value_error("set_metadata: the up axis is Y or Z, found '" + *upAxis + "'");
+              m.upAxis = *upAxis;
+            }
+            if (metersPerUnit) {
+              if (!(*metersPerUnit > 0) || !std::isfinite(*metersPerUnit))
+                throw py::value_error("set_metadata: metres per unit must be positive, found " +
+                                      text::formatDouble(*metersPerUnit));
+              m.metersPerUnit = *metersPerUnit;
+            }
+          },
+          py::arg("up_axis") = py::none(), py::arg("meters_per_unit") = py::none(),
+          "A driver program's (sdgbehave exec) change of the stage's up axis or metres per unit.");
 
   py::class_<ScriptContext, std::shared_ptr<ScriptContext>>(m, "Context", "A behavior's handle (self._ctx).")
       .def_property_readonly("prim", [](const ContextPtr& c) { c->liveStage(); return PrimHandle{c, c->primPath}; })

@@ -42,9 +42,16 @@ struct ScriptContext {
 
   std::vector<EventBus::Subscription> subscriptions;
 
+  // The context of a driver program (`sdgbehave exec`), not of a behavior:
+  // it edits the stage as its author (prims anywhere, nothing journaled or
+  // undone on stop).
+  bool driver = false;
+
   StageJournal& journal() { return playing ? playJournal : idleJournal; }
   // Both journals know a prim as created by this behavior.
-  bool created(const Prim& prim) const { return playJournal.createdHere(prim) || idleJournal.createdHere(prim); }
+  bool created(const Prim& prim) const {
+    return driver || playJournal.createdHere(prim) || idleJournal.createdHere(prim);
+  }
   const std::string& ns() const { return spec->name; }
   // The stage, or a RuntimeError for Python once detached.
   Stage& liveStage() const;

@@ -239,6 +239,8 @@ class _EmbeddedFinder:
         entry = self._modules.get(fullname)
         if entry is None:
             return None
+        if fullname.startswith(_ISAAC_EXTENSION) and _user_isaac_module(fullname):
+            return None  # the user's own copy of Isaac's extension wins (see _join_isaac_trees)
         return _importlib_util.spec_from_loader(fullname, self, origin=self.PREFIX + entry[0], is_package=entry[2])
 
     def create_module(self, spec):
@@ -254,8 +256,44 @@ class _EmbeddedFinder:
         return entry[1] if entry else None
 
 
+_EMBEDDED = None
+# Isaac's behavior extension: sdgbehave ships its own (global_variables,
+# utils, behaviors standing for the built-ins), and a user's copy found
+# above a script replaces it.
+_ISAAC_EXTENSION = "isaacsim.replicator"
+_user_isaac_trees = []
+
+
+def _user_isaac_module(fullname):
+    """True when a user's Isaac extension tree holds `fullname`."""
+    rel = fullname.split(".")[1:]  # below isaacsim/
+    for tree in _user_isaac_trees:
+        base = _os.path.join(tree, *rel)
+        if _os.path.isfile(base + ".py") or _os.path.isdir(base):  # a module, a package or a namespace
+            return True
+    return False
+
+
 def _install_embedded(files):
-    _sys.meta_path.insert(0, _EmbeddedFinder(dict(files)))
+    global _EMBEDDED
+    _EMBEDDED = _EmbeddedFinder(dict(files))
+    _sys.meta_path.insert(0, _EMBEDDED)
+
+
+def _import_hint(exc):
+    """What to say after a ModuleNotFoundError: for the Isaac Sim roots, what
+    the layer offers there instead; else how to get a Python module."""
+    name = getattr(exc, "name", None)
+    if not name:
+        return ""
+    root = name.split(".")[0]
+    if _EMBEDDED is not None and root in ("omni", "isaacsim", "carb", "pxr", "usdrt"):
+        offered = sorted(m for m in _EMBEDDED._modules if (m == root or m.startswith(root + "."))
+                         and not m.rsplit(".", 1)[-1].startswith("_"))
+        return (f"sdgbehave's Isaac Sim layer has no module '{name}'; under '{root}' it provides: "
+                f"{', '.join(offered)} (docs/isaac-scripts.md says what each does)")
+    return (f"module '{name}' is not installed for the Python sdgbehave embeds (Debian's python3): install "
+            f"its Debian package (python3-...) or put it on PYTHONPATH")
 
 
 def _join_isaac_trees(path):
@@ -270,6 +308,16 @@ def _join_isaac_trees(path):
             import isaacsim
             if tree not in isaacsim.__path__:
                 isaacsim.__path__.append(tree)
+            if _os.path.isdir(_os.path.join(tree, "replicator")) and tree not in _user_isaac_trees:
+                _user_isaac_trees.append(tree)
+                # Modules of sdgbehave's own extension imported before are
+                # dropped, so the user's are imported from now on.
+                for name in [m for m in _sys.modules if m == _ISAAC_EXTENSION or
+                             m.startswith(_ISAAC_EXTENSION + ".")]:
+                    if getattr(_sys.modules[name], "__file__", "").startswith(_EmbeddedFinder.PREFIX) or \
+                            getattr(_sys.modules[name], "__spec__", None) and \
+                            _sys.modules[name].__spec__.loader is _EMBEDDED:
+                        del _sys.modules[name]
         parent = _os.path.dirname(folder)
         if parent == folder:
             return
@@ -348,6 +396,8 @@ def _error_location(exc, tb, files):
     text = "Traceback (most recent call last):\n" + "".join(_traceback.format_list(frames)) + \
         "".join(_traceback.format_exception_only(type(exc), exc))
     text = text.rstrip()
+    if isinstance(exc, ModuleNotFoundError):
+        text += "\n" + _import_hint(exc)
     if chosen is None and frames:
         chosen = frames[-1]
     if chosen is None:
@@ -387,6 +437,16 @@ def _guard_exits():
     posix = _sys.modules.get("posix")
     if posix is not None:
         posix._exit = _exit
+
+
+def _run_program(path, argv):
+    """sdgbehave exec: runs the Script Editor program `path` (isaac_compat/_isaac_exec.py)."""
+    folder = _os.path.dirname(path)
+    if folder not in _sys.path:
+        _sys.path.insert(0, folder)
+    _join_isaac_trees(path)
+    import _isaac_exec
+    _isaac_exec.run(path, argv, _native.driver())
 
 
 def _seed_global_random(seed):

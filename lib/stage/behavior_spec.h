@@ -2,6 +2,7 @@
 // Plain description of a behavior: its namespace, its exposed variables and
 // documentation. The behavior registry produces these; the loader, the YAML
 // writer, `describe` and the JSON Schema all read them (one source of truth).
+#include <deque>
 #include <functional>
 #include <map>
 #include <string>
@@ -31,7 +32,9 @@ struct BehaviorSpec {
 };
 
 struct BehaviorCatalog {
-  std::vector<BehaviorSpec> specs;
+  // A deque: behaviors bound to a spec keep its address while scripts
+  // loaded later add theirs (sdgbehave exec attaches scripts as it runs).
+  std::deque<BehaviorSpec> specs;
   // Script files prims list in omni:scripting:scripts (absolute) -> the
   // behaviors each stands for (its classes, or the built-in standing in).
   std::map<std::string, std::vector<std::string>> attachedScripts;

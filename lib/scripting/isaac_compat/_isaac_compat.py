@@ -11,6 +11,42 @@ LAYER_PREFIX = "isaac_compat/"
 
 # The BehaviorScript instance whose hook runs now (None between hooks).
 current = None
+# The run executing a driver program (sdgbehave exec: _sdgbehave.Driver),
+# else None. The driver's awaits of the next update are its own updates.
+driver = None
+
+
+_driver_stage = None
+
+
+def driver_stage():
+    """The driver program's Usd.Stage (one object while a stage is open)."""
+    global _driver_stage
+    if _driver_stage is None:
+        from pxr import Usd
+        _driver_stage = Usd.Stage(driver.context.stage)
+    return _driver_stage
+
+
+def stage_changed():
+    """A new stage is open: handles on the old one's prims go."""
+    global _driver_stage
+    _driver_stage = None
+
+
+class DriverEvents:
+    """The driver program's side of the event bus (carb.eventdispatcher from
+    the program's own code): publish, subscribe and unsubscribe as a
+    behavior has them."""
+
+    def publish(self, name, payload):
+        driver.context.publish(name, payload)
+
+    def subscribe(self, name, callback):
+        return driver.context.subscribe(name, callback)
+
+    def unsubscribe(self, sid):
+        driver.context.unsubscribe(sid)
 
 
 class IsaacApiMissing(AttributeError):
@@ -34,6 +70,14 @@ def missing(module, name):
     return IsaacApiMissing(
         f"{module}.{name} is not provided by sdgbehave's Isaac Sim layer (used at {file}:{line}); "
         f"{DOCS} lists what the layer provides")
+
+
+def driver_for(what, why):
+    """The run of the driver program (sdgbehave exec), or the located error
+    saying that `what` works only in one, and `why`."""
+    if driver is None or current is not None:
+        raise unsupported(what, why)
+    return driver
 
 
 def module_getattr(module):
@@ -127,6 +171,9 @@ def advance(token):
     if token == _last_update:
         return
     _last_update = token
+    if driver is not None:
+        run_ready()  # the driver program resumes after the whole update (_isaac_exec)
+        return
     ready, _waiting[:] = list(_waiting), []
     for future in ready:
         if not future.done():
@@ -136,8 +183,8 @@ def advance(token):
 
 def run_ready():
     """Runs the loop's ready callbacks (and what they make ready) to completion."""
-    if _loop is None:
-        return
+    if _loop is None or _loop.is_running():
+        return  # called from code the loop runs (a driver program's task): the loop goes on by itself
     for _ in range(1000):
         if not _loop._ready:
             break

@@ -11,6 +11,8 @@ __getattr__ = _module_getattr(__name__)
 
 def _behavior(what):
     b = _isaac_compat.current
+    if b is None and _isaac_compat.driver is not None:
+        return _isaac_compat.DriverEvents()
     if b is None:
         raise RuntimeError(f"carb.eventdispatcher.{what}: called outside a behavior hook; sdgbehave's events belong "
                            f"to a behavior ({_isaac_compat.DOCS})")
@@ -50,7 +52,7 @@ class _Dispatcher:
 
         def deliver(payload):
             previous = _isaac_compat.current
-            _isaac_compat.current = behavior
+            _isaac_compat.current = None if isinstance(behavior, _isaac_compat.DriverEvents) else behavior
             try:
                 on_event(IEvent(name, payload))
                 _isaac_compat.run_ready()  # coroutines the callback started run now (and raise here)

@@ -1,8 +1,14 @@
-"""omni.usd: the stage of the behavior whose hook runs, and free paths."""
+"""omni.usd: the stage (a behavior's while its hook runs; a driver program's
+under `sdgbehave exec`), opening, creating and saving stages, free paths."""
 import _isaac_compat
 from _isaac_compat import Located as _Located, module_getattr as _module_getattr
 
 __getattr__ = _module_getattr(__name__)
+
+
+def _driver(what):
+    return _isaac_compat.driver_for(f"omni.usd.get_context().{what}", "only a driver program (sdgbehave exec) "
+                                    "opens stages; a behavior works on the stage it runs on")
 
 
 class _Context(_Located):
@@ -10,10 +16,44 @@ class _Context(_Located):
 
     def get_stage(self):
         b = _isaac_compat.current
-        return b.stage if b is not None else None
+        if b is not None:
+            return b.stage
+        return _isaac_compat.driver_stage() if _isaac_compat.driver is not None else None
 
     def get_stage_id(self):
         return 1
+
+    def get_stage_url(self):
+        return ""
+
+    def new_stage(self, *args, **kwargs):
+        _driver("new_stage").new_stage()
+        _isaac_compat.stage_changed()
+        return True
+
+    async def new_stage_async(self, *args, **kwargs):
+        return self.new_stage()
+
+    def open_stage(self, url, *args, **kwargs):
+        _driver("open_stage").open_stage(str(url))
+        _isaac_compat.stage_changed()
+        return True
+
+    async def open_stage_async(self, url, *args, **kwargs):
+        return self.open_stage(url)
+
+    def save_as_stage(self, url, *args, **kwargs):
+        _driver("save_as_stage").save_stage(str(url))
+        return True
+
+    async def save_as_stage_async(self, url, *args, **kwargs):
+        return self.save_as_stage(url), ""
+
+    def close_stage(self, *args, **kwargs):
+        return self.new_stage()
+
+    async def close_stage_async(self, *args, **kwargs):
+        return self.close_stage()
 
 
 _CONTEXT = _Context()

@@ -115,6 +115,11 @@ class Attribute(_Located):
         if self._name == "xformOpOrder":
             return list(self._prim._h.xform_op_names) or None
         h = self._prim._h
+        if self._name.startswith("xformOp:"):  # an op: sdgbehave keeps ops with the prim, not as attributes
+            for name, value in h.xform_ops:
+                if name == self._name:
+                    return _to_gf(value, h.attribute_type(name))
+            return None
         return _to_gf(h.get_attribute(self._name), h.attribute_type(self._name))
 
     def Set(self, value, time=None):

@@ -236,3 +236,82 @@ def GetStageUpAxis(stage):
 
 def GetStageMetersPerUnit(stage):
     return stage._s.meters_per_unit
+
+
+def SetStageUpAxis(stage, axis):
+    """Only a driver program (sdgbehave exec) sets the stage's metadata."""
+    stage._s.set_metadata(up_axis=str(axis))
+    return True
+
+
+def SetStageMetersPerUnit(stage, meters_per_unit):
+    stage._s.set_metadata(meters_per_unit=float(meters_per_unit))
+    return True
+
+
+class XformCommonAPI(_Located):
+    """USD's common transform: translate, rotate (one three-axis op), scale, in that order, on the prim's ops.
+    Pivots are not supported."""
+    __slots__ = ("_prim",)
+
+    RotationOrderXYZ, RotationOrderXZY, RotationOrderYXZ = "XYZ", "XZY", "YXZ"
+    RotationOrderYZX, RotationOrderZXY, RotationOrderZYX = "YZX", "ZXY", "ZYX"
+    OpTranslate, OpRotate, OpScale, OpPivot = "translate", "rotate", "scale", "pivot"
+
+    def __init__(self, prim=None):
+        self._prim = prim.GetPrim() if isinstance(prim, Usd.SchemaBase) else prim
+
+    def __bool__(self):
+        return bool(self._prim) and self._prim._h.is_xformable
+
+    def GetPrim(self):
+        return self._prim
+
+    def _op(self, name, make):
+        for op in Xformable(self._prim).GetOrderedXformOps():
+            if op.GetOpName() == name:
+                return op
+        return make()
+
+    def _rotate_op(self, order):
+        for op in Xformable(self._prim).GetOrderedXformOps():
+            if op.GetOpName().startswith("xformOp:rotate") and len(op.GetOpName()) == len("xformOp:rotateXYZ"):
+                return op
+        return Xformable(self._prim).AddXformOp("rotate" + order)
+
+    def SetTranslate(self, translation, time=None):
+        self._op("xformOp:translate", lambda: Xformable(self._prim).AddTranslateOp()).Set(Gf.Vec3d(translation))
+        return True
+
+    def SetRotate(self, rotation, rotOrder="XYZ", time=None):
+        self._rotate_op(str(rotOrder)).Set(Gf.Vec3f(rotation))
+        return True
+
+    def SetScale(self, scale, time=None):
+        self._op("xformOp:scale", lambda: Xformable(self._prim).AddScaleOp()).Set(Gf.Vec3f(scale))
+        return True
+
+    def SetXformVectors(self, translation, rotation, scale, pivot=None, rotOrder="XYZ", time=None):
+        if pivot is not None and any(float(p) != 0.0 for p in pivot):
+            raise _unsupported("UsdGeom.XformCommonAPI pivots")
+        return self.SetTranslate(translation) and self.SetRotate(rotation, rotOrder) and self.SetScale(scale)
+
+    def SetPivot(self, pivot, time=None):
+        if any(float(p) != 0.0 for p in pivot):
+            raise _unsupported("UsdGeom.XformCommonAPI pivots")
+        return True
+
+    def GetXformVectors(self, time=None):
+        """(translation, rotation in degrees, scale, pivot, rotation order) from the prim's ops."""
+        translation, rotation, scale, order = Gf.Vec3d(0, 0, 0), Gf.Vec3f(0, 0, 0), Gf.Vec3f(1, 1, 1), "XYZ"
+        for op in Xformable(self._prim).GetOrderedXformOps():
+            name = op.GetOpName()
+            if name == "xformOp:translate":
+                translation = Gf.Vec3d(op.Get())
+            elif name == "xformOp:scale":
+                scale = Gf.Vec3f(op.Get())
+            elif name.startswith("xformOp:rotate") and len(name) == len("xformOp:rotateXYZ"):
+                rotation, order = Gf.Vec3f(op.Get()), name[len("xformOp:rotate"):]
+        return translation, rotation, scale, Gf.Vec3f(0, 0, 0), order
+
+    GetXformVectorsByAccumulation = GetXformVectors

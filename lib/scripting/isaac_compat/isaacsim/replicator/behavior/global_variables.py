@@ -1,0 +1,5 @@
+"""The extension's names, as Isaac Sim defines them."""
+EXTENSION_NAME = "isaacsim.replicator.behavior"
+EXPOSED_ATTR_NS = "exposedVar"
+SCOPE_NAME = "/Behaviors"
+EXPOSED_VARS_CHANGED_EVENT = f"{EXTENSION_NAME}.EXPOSED_VARS_CHANGED"

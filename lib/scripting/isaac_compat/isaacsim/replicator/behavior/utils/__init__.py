@@ -1,0 +1,1 @@
+"""isaacsim.replicator.behavior.utils"""

@@ -1,0 +1,1 @@
+import omni.isaac.core.world  # noqa: F401

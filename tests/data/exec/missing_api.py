@@ -1,0 +1,3 @@
+import omni.replicator.core as rep
+
+rep.create.cube()

@@ -1,0 +1,1 @@
+from omni.isaac.nonexistent import Thing  # noqa: F401
