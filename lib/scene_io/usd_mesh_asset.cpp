@@ -103,6 +103,9 @@ MeshData loadUsdMeshAsset(const std::string& path, const std::string& submesh) {
     if (const Value* file = prim.value("asset"); file && !file->get<std::string>().empty()) {
       std::filesystem::path named(file->get<std::string>());
       if (named.is_relative()) named = std::filesystem::path(path).parent_path() / named;
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(named, ec))
+        throw RunError(path + ": " + prim.path() + " names the mesh file " + named.string() + ", which is not a file");
       if (gNestedMeshFiles >= kMaxNestedMeshFiles)
         throw RunError(path + ": mesh files name each other more than " + std::to_string(kMaxNestedMeshFiles) +
                        " deep (a cycle?)");
