@@ -140,6 +140,41 @@ class ExecSession : public scripting::DriverHost {
     }
   }
 
+  void movePrim(const std::string& from, const std::string& to) override {
+    Stage& stage = loaded_->scene.stage;
+    const SourceLoc at{from, 0, 0};
+    Prim* source = stage.find(from);
+    if (!source || source->isPseudoRoot()) throw SceneError(at, "MovePrim: the prim does not exist");
+    if (std::string why = path::whyInvalid(to); !why.empty()) throw SceneError(SourceLoc{to, 0, 0}, "MovePrim: " + why);
+    if (stage.find(to)) throw SceneError(SourceLoc{to, 0, 0}, "MovePrim: a prim exists at the new path already");
+    if (to.starts_with(from + "/")) throw SceneError(at, "MovePrim: a prim cannot move below itself");
+    if (!stage.find(path::parent(to))) throw SceneError(SourceLoc{to, 0, 0}, "MovePrim: the new parent does not exist");
+    const std::vector<Prim*> subtree = stage.subtree(*source);
+    for (const Prim* p : subtree)
+      if (!p->behaviors().empty())
+        throw SceneError(SourceLoc{p->path(), 0, 0}, "MovePrim: the prim has behaviors running; sdgbehave moves "
+                                                     "prims without behaviors only");
+    auto moved = [&](const std::string& path) {
+      return path == from ? to : path.starts_with(from + "/") ? to + path.substr(from.size()) : path;
+    };
+    for (const Prim* p : subtree) {  // pre-order: parents first
+      Prim& copy = stage.definePrim(moved(p->path()), p->type());
+      for (const auto& [name, attribute] : p->attributes()) copy.setAttribute(name, attribute.value, attribute.custom);
+      copy.xformOps() = p->xformOps();
+      copy.semantics() = p->semantics();
+      copy.material() = p->material();
+      copy.metadata() = p->metadata();
+    }
+    stage.removePrim(from);
+    stage.traverse([&](Prim& p) {
+      if (p.material()) p.material()->path = moved(p.material()->path);
+    });
+    if (auto it = listed_.find(from); it != listed_.end()) {
+      listed_[to] = it->second;
+      listed_.erase(it);
+    }
+  }
+
   std::string assetsRoot() const override { return assetsRoot_; }
 
   void update() override {

@@ -38,6 +38,10 @@ class DriverHost {
   // The prim at `primPath` (an empty Xform or Scope) becomes the default prim
   // of the USD or YAML file `file` (Isaac's AddReference on a new prim).
   virtual void reference(const std::string& primPath, const std::string& file) = 0;
+  // Kit's MovePrim: the prim and its subtree at a new path (renamed or
+  // reparented), material bindings into it following; refused for a prim
+  // with behaviors running below it.
+  virtual void movePrim(const std::string& from, const std::string& to) = 0;
   // The folder get_assets_root_path() answers.
   virtual std::string assetsRoot() const = 0;
 

@@ -55,6 +55,9 @@ void bindDriver(py::module_& m) {
       .def("reference", [](Driver&, const std::string& prim, const std::string& file) {
         translated([&] { host().reference(prim, file); });
       })
+      .def("move_prim", [](Driver&, const std::string& from, const std::string& to) {
+        translated([&] { host().movePrim(from, to); });
+      })
       .def_property_readonly("assets_root", [](Driver&) { return host().assetsRoot(); })
       .def("update", [](Driver&) { translated([] { host().update(); }); })
       .def("play", [](Driver&) { translated([] { host().play(); }); })

@@ -69,6 +69,15 @@ def _delete_prims(paths=(), destructive=False, **_kwargs):
     return True, None
 
 
+def _move_prim(path_from, path_to, keep_world_transform=False, destructive=False, **_kwargs):
+    """Renames or reparents a prim (its subtree, bindings into it following); the local transform is kept."""
+    if keep_world_transform:
+        raise _unsupported("MovePrim(keep_world_transform=True)", "the prim keeps its local transform")
+    _stage("MovePrim")
+    _isaac_compat.driver.move_prim(str(path_from), str(path_to))
+    return True, None
+
+
 def _apply_scripting_api(paths=(), **_kwargs):
     from pxr import Sdf
     stage = _stage("ApplyScriptingAPICommand")
@@ -99,6 +108,7 @@ _COMMANDS = {
     "CreatePrim": _create_prim,
     "CreatePrimWithDefaultXform": _create_prim,
     "DeletePrims": _delete_prims,
+    "MovePrim": _move_prim,
     "ApplyScriptingAPICommand": _apply_scripting_api,
     "CreateMdlMaterialPrim": _create_mdl_material_prim,
 }
