@@ -39,8 +39,11 @@ void addVerify(CLI::App& app, int& exitCode) {
     } catch (const RunError&) {
     }
     const bool complete = expected == 0 || entries.size() == expected;
-    std::cout << *dir << ": " << entries.size() << " frame outputs, " << report.files << " files checked, "
-              << report.problems.size() << " problems" << (complete ? "" : "; the run is incomplete (" +
+    // "N files" counts what `run` counted (files_written); the manifest
+    // lists the frames' files and hidden parts, not the files made at the end.
+    std::cout << *dir << ": " << report.folderFiles << " files, " << entries.size() << " frame outputs; the manifest's "
+              << report.files - report.hiddenParts << " files and " << report.hiddenParts
+              << " hidden parts checked, " << report.problems.size() << " problems" << (complete ? "" : "; the run is incomplete (" +
                                                                              std::to_string(entries.size()) + " of " +
                                                                              std::to_string(expected) + ")")
               << "\n";

@@ -125,10 +125,10 @@ void addRun(CLI::App& app, int& exitCode) {
       options.render = renderOverrides(args->image);
       options.progress = Progress::stderrIsTerminal() && log::enabled(log::Level::Info);
       DatasetRunResult result = runDataset(loaded, options);
-      std::string summary =
+      const nlohmann::ordered_json summaryJson =
           makeRunSummary(RunSummaryInputs{versionText(), args->scene.scene, &loaded.scene, &options, &result, loadSeconds,
-                                           &loaded.dropped})
-              .dump(2) + "\n";
+                                          &loaded.dropped});
+      std::string summary = summaryJson.dump(2) + "\n";
       // A shard's summary waits beside the others for `sdgbehave merge`.
       const std::filesystem::path summaryPath =
           options.plan.shard.sharded()
@@ -140,7 +140,7 @@ void addRun(CLI::App& app, int& exitCode) {
       std::snprintf(line, sizeof line, "%llu frames%s, %llu files in %s: %.2f s, %.1f frames/s, peak %.0f MB (%s, %s)",
                     static_cast<unsigned long long>(result.frames),
                     result.resumedFrames ? (" (" + std::to_string(result.resumedFrames) + " kept from before)").c_str() : "",
-                    static_cast<unsigned long long>(result.files + 1), options.outDir.c_str(),
+                    summaryJson["files_written"].get<unsigned long long>(), options.outDir.c_str(),
                     loadSeconds + result.seconds, result.seconds > 0 ? double(result.frames) / result.seconds : 0.0,
                     peakRssMb(), result.backend.c_str(), result.device.c_str());
       log::info(line);

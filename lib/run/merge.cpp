@@ -9,6 +9,7 @@
 #include "core/file_io.h"
 #include "core/text.h"
 #include "run/dataset_finalize.h"
+#include "writers/manifest.h"
 
 namespace sdg {
 namespace fs = std::filesystem;
@@ -76,6 +77,11 @@ MergeResult mergeShards(const std::string& dir) {
   j["iterations"] = info.iterations;
   j["frames_per_iteration"] = info.framesPerIteration;
   j["output"] = dir;
+  // As a whole run counts them: the folder's files (shards write the same
+  // run files, so their counts do not add up) and this summary, about to be.
+  const bool summaryExists = fs::exists(fs::path(dir) / "run_summary.json", ec);
+  result.files = countDatasetFiles(dir) + (summaryExists ? 0 : 1);
+  j["files_written"] = result.files;
   nlohmann::ordered_json settle = nlohmann::ordered_json::array(), perShard = nlohmann::ordered_json::array();
   double busiest = 0;
   for (const auto& s : shards) {

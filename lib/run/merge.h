@@ -12,6 +12,7 @@ namespace sdg {
 struct MergeResult {
   uint64_t frames = 0;
   uint64_t shards = 0;  // shard summaries found
+  uint64_t files = 0;   // the dataset's files outside .sdgbehave/, as run_summary.json's files_written
   nlohmann::ordered_json summary;
 };
 

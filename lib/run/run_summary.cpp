@@ -36,7 +36,7 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
                 {"first_frame", o.plan.ownedBegin()}, {"end_frame", o.plan.ownedEnd()}};
   j["pre_rolls"] = r.iterationsRun;
   j["output"] = o.outDir;
-  j["files_written"] = r.files;
+  j["files_written"] = datasetFilesWritten(r, o.plan.shard.sharded());
   j["renderer"] = {{"backend", r.backend}, {"device", r.device}, {"gl_renderer", r.renderer}};
   const double total = in.loadSeconds + r.seconds;
   j["seconds"] = {{"load", in.loadSeconds},          {"preroll", r.stages.preroll},
@@ -56,6 +56,10 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
   j["dropped"] = std::move(dropped);
   j["warnings"] = r.warnings;
   return j;
+}
+
+uint64_t datasetFilesWritten(const DatasetRunResult& result, bool sharded) {
+  return result.files + (sharded ? 0 : 1);
 }
 
 }  // namespace sdg

@@ -21,6 +21,11 @@ struct RunSummaryInputs {
 };
 
 nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in);
+// The files a run leaves in its folder outside .sdgbehave/: what it wrote
+// there, and run_summary.json itself unless the run is a shard (whose
+// summary waits in .sdgbehave/ for merge). The run's log line,
+// `files_written` and `sdgbehave verify`'s "N files" give this one count.
+uint64_t datasetFilesWritten(const DatasetRunResult& result, bool sharded);
 // Peak resident memory of this process, MB.
 double peakRssMb();
 

@@ -15,6 +15,7 @@
 
 #include "core/diagnostics.h"
 #include "core/file_io.h"
+#include "writers/output_files.h"
 
 namespace sdg {
 namespace fs = std::filesystem;
@@ -157,11 +158,28 @@ void writeCanonicalManifest(const std::string& dir, const std::vector<ManifestEn
   }
 }
 
+size_t countDatasetFiles(const std::string& dir) {
+  size_t count = 0;
+  std::error_code walkError;
+  for (auto it = fs::recursive_directory_iterator(dir, walkError); !walkError && it != fs::recursive_directory_iterator();
+       it.increment(walkError)) {
+    if (it.depth() == 0 && it->path().filename() == kPartsFolder) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    std::error_code ec;
+    if (it->is_regular_file(ec)) ++count;
+  }
+  return count;
+}
+
 VerifyReport verifyManifest(const std::string& dir, const std::vector<ManifestEntry>& entries) {
   VerifyReport report;
+  report.folderFiles = countDatasetFiles(dir);
   for (const ManifestEntry& e : entries)
     for (const ManifestFile& f : e.files) {
       ++report.files;
+      if (f.path.starts_with(std::string(kPartsFolder) + "/")) ++report.hiddenParts;
       const std::string path = (fs::path(dir) / f.path).string();
       std::error_code ec;
       if (!fs::exists(path, ec)) {

@@ -61,9 +61,14 @@ std::vector<ManifestEntry> readManifests(const std::string& dir);
 void writeCanonicalManifest(const std::string& dir, const std::vector<ManifestEntry>& entries);
 
 struct VerifyReport {
-  size_t files = 0;
+  size_t folderFiles = 0;  // regular files in the folder outside .sdgbehave/: a run's files_written
+  size_t files = 0;        // files the manifests list, all checked; of them,
+  size_t hiddenParts = 0;  // those below .sdgbehave/ (contact-sheet tiles, COCO fragments)
   std::vector<std::string> problems;  // "path: missing" / "path: sha256 differs" ...
 };
 VerifyReport verifyManifest(const std::string& dir, const std::vector<ManifestEntry>& entries);
+// Regular files below `dir` outside .sdgbehave/: a dataset's files as
+// files_written and verify count them.
+size_t countDatasetFiles(const std::string& dir);
 
 }  // namespace sdg
