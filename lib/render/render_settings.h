@@ -37,6 +37,9 @@ struct RenderSettings {
   int samples = 0;       // per pixel
   int maxBounces = 0;    // scattering events whose light is counted
   bool denoise = false;  // the edge-aware filter (render/pathtrace/denoiser.h)
+  // The GPU every GL context of the process draws on (--gpu): an index among
+  // the GPUs it sees (render/egl/egl_devices.h); -1: the first.
+  int gpu = -1;
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -529,6 +529,7 @@ void DatasetRun::finish() {
   result_.renderer = context.rendererName();
   result_.backend = context.backend();
   result_.device = context.device();
+  if (color_) result_.colorDevice = color_->device().empty() ? "rasterizer (" + context.device() + ")" : color_->device();
   bringUp_->retireInBackground();
   if (!capture_) scene_.stage = original_;
   if (recorder_) recorder_->close();

@@ -50,6 +50,7 @@ struct DatasetRunResult {
   std::string renderer;
   std::string backend;
   std::string device;
+  std::string colorDevice;  // what made the colour: the rasterizer, or a path tracer and its device
   double seconds = 0;  // wall time of the run (after loading)
   StageTimes stages;
   uint64_t simulationFrames = 0;  // renderSimulation images per camera

@@ -37,7 +37,7 @@ nlohmann::ordered_json makeRunSummary(const RunSummaryInputs& in) {
   j["pre_rolls"] = r.iterationsRun;
   j["output"] = o.outDir;
   j["files_written"] = datasetFilesWritten(r, o.plan.shard.sharded());
-  j["renderer"] = {{"backend", r.backend}, {"device", r.device}, {"gl_renderer", r.renderer}};
+  j["renderer"] = {{"backend", r.backend}, {"device", r.device}, {"gl_renderer", r.renderer}, {"color", r.colorDevice}};
   const double total = in.loadSeconds + r.seconds;
   j["seconds"] = {{"load", in.loadSeconds},          {"preroll", r.stages.preroll},
                   {"behaviors", r.stages.behaviors}, {"render", r.stages.render},

@@ -58,6 +58,7 @@ RenderSettings renderSettingsFor(const Scene& scene, const RenderOverrides& over
   settings.samples = overrides.samples.value_or(int(scene.render.getUInt("samples")));
   settings.maxBounces = int(scene.render.getUInt("max_bounces"));
   settings.denoise = overrides.denoise.value_or(scene.render.getBool("denoise"));
+  settings.gpu = overrides.gpu;
   return settings;
 }
 

@@ -4,8 +4,9 @@ render the same scene: labels agree (semantic ids exact except at most 1 %
 of pixels, which can only sit on silhouettes; boxes within 1 pixel), depth
 within 1 mm plus 0.1 % where both see geometry, colour within 3 levels on
 average. The summary names the back end and device. Errors: an unknown
-back end is a usage error (exit 2); --gpu with osmesa, or a GPU index on a
-machine without that GPU, exits 1 naming what was tried."""
+back end is a usage error (exit 2); --gpu with osmesa, a GPU index on a
+machine without that GPU, or SDGBEHAVE_VISIBLE_GPUS malformed or naming a GPU
+the machine lacks, exits 1 naming what was tried."""
 import json
 import os
 import subprocess
@@ -60,6 +61,18 @@ def main():
         bad = run(binary, scene, f"{tmp}/z", "--backend", "egl", "--gpu", "7")
         check(bad.returncode == 1 and "EGL back end" in bad.stderr and "--gpu 7" in bad.stderr,
               f"--gpu 7: {bad.returncode} {bad.stderr.strip()}")
+        # SDGBEHAVE_VISIBLE_GPUS, read where every GL context finds its device (render/egl).
+        env = dict(os.environ, SDGBEHAVE_VISIBLE_GPUS="0,x")
+        bad = subprocess.run([binary, "run", scene, "--out", f"{tmp}/v", "--frames", "1", "--resolution", "32x32",
+                              "--backend", "egl"], capture_output=True, text=True, env=env)
+        check(bad.returncode == 1 and "SDGBEHAVE_VISIBLE_GPUS=0,x" in bad.stderr and "'x'" in bad.stderr,
+              f"a malformed SDGBEHAVE_VISIBLE_GPUS: {bad.returncode} {bad.stderr.strip()[-300:]}")
+        env["SDGBEHAVE_VISIBLE_GPUS"] = "99"
+        bad = subprocess.run([binary, "run", scene, "--out", f"{tmp}/w", "--frames", "1", "--resolution", "32x32",
+                              "--backend", "egl"], capture_output=True, text=True, env=env)
+        check(bad.returncode == 1 and "names GPU 99" in bad.stderr,
+              f"SDGBEHAVE_VISIBLE_GPUS naming a GPU the machine lacks: {bad.returncode} {bad.stderr.strip()[-300:]}")
+        check(sb["renderer"].get("color", "") != "", f"the summary names what made the colour: {sb['renderer']}")
     return finish("ok")
 
 

@@ -7,6 +7,7 @@ PathTraceSettings pathTraceSettingsOf(const RenderSettings& s, int threads) {
   p.samples = s.samples;
   p.maxBounces = s.maxBounces;
   p.threads = threads;
+  p.gpu = s.gpu;
   return p;
 }
 

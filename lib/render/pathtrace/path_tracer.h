@@ -52,6 +52,7 @@ struct PathTraceSettings {
   int samples = 0;     // per pixel
   int maxBounces = 0;  // path length limit (Russian roulette after 3): the scattering events whose light is counted
   int threads = 0;     // 0: hardware concurrency
+  int gpu = -1;        // the GPU tracer's device among the visible GPUs (--gpu); -1: the first
 };
 
 struct PathTracedFrame {  // rows top to bottom, like FramePasses

@@ -1,7 +1,5 @@
 #include "render/pathtrace/gpu/gl_compute.h"
 
-#include <dlfcn.h>
-
 #include <condition_variable>
 #include <cstdlib>
 #include <exception>
@@ -10,69 +8,43 @@
 #include <thread>
 #include <vector>
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include "render/egl/egl_devices.h"
 
 namespace sdg {
 namespace {
 
-template <typename Fn>
-Fn eglFunction(PFNEGLGETPROCADDRESSPROC getProc, const char* name) {
-  Fn fn = reinterpret_cast<Fn>(getProc(name));
-  if (!fn) throw GpuUnavailable(std::string("GPU path tracer: libEGL lacks ") + name);
-  return fn;
-}
-
-bool listed(const char* list, const char* name) {
-  if (!list) return false;
-  const std::string all = std::string(" ") + list + " ";
-  return all.find(std::string(" ") + name + " ") != std::string::npos;
-}
-
-// The first GPU device of EGL's device platform; Mesa also lists a
-// software one, which the surfaceless platform covers.
-EGLDeviceEXT firstGpuDevice(PFNEGLGETPROCADDRESSPROC getProc) {
-  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(getProc("eglQueryDevicesEXT"));
-  auto deviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(getProc("eglQueryDeviceStringEXT"));
-  EGLint count = 0;
-  if (!queryDevices || !queryDevices(0, nullptr, &count) || count <= 0) return nullptr;
-  std::vector<EGLDeviceEXT> all(static_cast<size_t>(count));
-  if (!queryDevices(count, all.data(), &count)) return nullptr;
-  for (EGLint i = 0; i < count; ++i)
-    if (!listed(deviceString ? deviceString(all[size_t(i)], EGL_EXTENSIONS) : nullptr, "EGL_MESA_device_software"))
-      return all[size_t(i)];
-  return nullptr;
-}
-
-PFNEGLGETPROCADDRESSPROC loadEgl(void*& library) {
-  library = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
-  if (!library) return nullptr;
-  return reinterpret_cast<PFNEGLGETPROCADDRESSPROC>(dlsym(library, "eglGetProcAddress"));
-}
-
 // The context itself, made and used on one thread (ThreadedContext's).
 class EglComputeContext {
  public:
-  EglComputeContext() {
-    auto getProc = loadEgl(library_);
-    if (!getProc) throw GpuUnavailable("GPU path tracer: cannot load libEGL.so.1 (or it has no eglGetProcAddress)");
-    makeCurrent_ = eglFunction<PFNEGLMAKECURRENTPROC>(getProc, "eglMakeCurrent");
-    destroyContext_ = eglFunction<PFNEGLDESTROYCONTEXTPROC>(getProc, "eglDestroyContext");
-    auto initialize = eglFunction<PFNEGLINITIALIZEPROC>(getProc, "eglInitialize");
-    auto bindApi = eglFunction<PFNEGLBINDAPIPROC>(getProc, "eglBindAPI");
-    auto chooseConfig = eglFunction<PFNEGLCHOOSECONFIGPROC>(getProc, "eglChooseConfig");
-    auto createContext = eglFunction<PFNEGLCREATECONTEXTPROC>(getProc, "eglCreateContext");
-    auto queryString = eglFunction<PFNEGLQUERYSTRINGPROC>(getProc, "eglQueryString");
-    auto platformDisplay = eglFunction<PFNEGLGETPLATFORMDISPLAYEXTPROC>(getProc, "eglGetPlatformDisplayEXT");
-    EGLDeviceEXT gpu = firstGpuDevice(getProc);  // else llvmpipe
-    onGpu_ = gpu != nullptr;
-    display_ = gpu ? platformDisplay(EGL_PLATFORM_DEVICE_EXT, gpu, nullptr)
-                   : platformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  explicit EglComputeContext(int gpu) {
+    std::string why;
+    const egl::Api* api = egl::api(&why);
+    if (!api) throw GpuUnavailable("GPU path tracer: " + why);
+    const egl::Api& egl = *api;
+    makeCurrent_ = egl.makeCurrent;
+    destroyContext_ = egl.destroyContext;
+    auto getProc = egl.getProcAddress;
+    std::string problem;
+    const std::vector<egl::Gpu> gpus = egl::visibleGpus(egl, &problem);
+    if (!problem.empty()) throw GpuUnavailable("GPU path tracer: " + problem);
+    if (gpu >= 0 && size_t(gpu) >= gpus.size())
+      throw GpuUnavailable("GPU path tracer: --gpu " + std::to_string(gpu) + " is out of range; this process sees " +
+                           std::to_string(gpus.size()) + " GPU device(s)");
+    const size_t index = gpu >= 0 ? size_t(gpu) : 0;
+    onGpu_ = !gpus.empty();  // else llvmpipe
+    device_ = onGpu_ ? egl::describe(gpus[index], int(index)) : "EGL surfaceless (software)";
+    display_ = onGpu_ ? egl.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, gpus[index].device, nullptr)
+                      : egl.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    auto initialize = egl.initialize;
+    auto bindApi = egl.bindApi;
+    auto chooseConfig = egl.chooseConfig;
+    auto createContext = egl.createContext;
+    auto queryString = egl.queryString;
     EGLint major = 0, minor = 0;
     if (display_ == EGL_NO_DISPLAY || !initialize(display_, &major, &minor) || !bindApi(EGL_OPENGL_API))
       throw GpuUnavailable("GPU path tracer: no EGL display with desktop OpenGL");
     EGLConfig config = EGL_NO_CONFIG_KHR;
-    if (!listed(queryString(display_, EGL_EXTENSIONS), "EGL_KHR_no_config_context")) {
+    if (!egl::hasExtension(queryString(display_, EGL_EXTENSIONS), "EGL_KHR_no_config_context")) {
       const EGLint attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
       EGLint found = 0;
       if (!chooseConfig(display_, attribs, &config, 1, &found) || found < 1)
@@ -108,7 +80,7 @@ class EglComputeContext {
         gl_.glBufferStorage = nullptr;  // the read-back then takes the 4.3 way
     }
     description_ = std::string(reinterpret_cast<const char*>(gl_.glGetString(GL_RENDERER))) + ", " +
-                   reinterpret_cast<const char*>(gl_.glGetString(GL_VERSION));
+                   reinterpret_cast<const char*>(gl_.glGetString(GL_VERSION)) + " on " + device_;
   }
 
   ~EglComputeContext() {
@@ -124,22 +96,22 @@ class EglComputeContext {
   bool onGpu() const { return onGpu_; }
 
  private:
-  void* library_ = nullptr;
   PFNEGLMAKECURRENTPROC makeCurrent_ = nullptr;
   PFNEGLDESTROYCONTEXTPROC destroyContext_ = nullptr;
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
   GlComputeApi gl_;
   bool onGpu_ = false;
+  std::string device_;
   std::string description_;
 };
 
 // Owns the thread the context lives on; run() hands it one task at a time.
 class ThreadedContext final : public GlComputeContext {
  public:
-  ThreadedContext() : thread_([this] { loop(); }) {
+  explicit ThreadedContext(int gpu) : thread_([this] { loop(); }) {
     try {
-      run([this] { context_ = std::make_unique<EglComputeContext>(); });
+      run([this, gpu] { context_ = std::make_unique<EglComputeContext>(gpu); });
     } catch (...) {
       stop();
       throw;
@@ -201,12 +173,11 @@ class ThreadedContext final : public GlComputeContext {
 
 }  // namespace
 
-std::unique_ptr<GlComputeContext> createGlComputeContext() { return std::make_unique<ThreadedContext>(); }
+std::unique_ptr<GlComputeContext> createGlComputeContext(int gpu) { return std::make_unique<ThreadedContext>(gpu); }
 
 bool eglGpuDeviceListed() {
-  void* library = nullptr;
-  auto getProc = loadEgl(library);
-  return getProc && firstGpuDevice(getProc) != nullptr;  // libEGL stays loaded, as for the contexts
+  const egl::Api* api = egl::api();
+  return api && !egl::visibleGpus(*api).empty();
 }
 
 }  // namespace sdg

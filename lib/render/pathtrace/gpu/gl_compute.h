@@ -1,8 +1,9 @@
 #pragma once
 // The GPU path tracer's own OpenGL context: 4.5 (or 4.3) core, for compute
-// shaders, with no surface. It comes from EGL: the first GPU through EGL's
-// device platform, else Mesa's surfaceless platform (llvmpipe), so the same
-// kernels run in CI on the CPU. It is separate from the rasterizer's 3.3
+// shaders, with no surface. It comes from EGL (render/egl/egl_devices.h,
+// shared with the rasterizer): the GPU `--gpu` names among those the process
+// sees, else Mesa's surfaceless platform (llvmpipe), so the same kernels run
+// in CI on the CPU. It is separate from the rasterizer's 3.3
 // context and lives on a thread of its own, where it stays current: the
 // calling thread's current context (the rasterizer's, EGL or OSMesa, which
 // share Mesa's dispatch) is never touched.
@@ -90,10 +91,11 @@ class GlComputeContext {
   virtual void run(const std::function<void()>& task) = 0;
 };
 
-// GpuUnavailable when EGL is missing or no context with GL 4.3 compute
+// GpuUnavailable when EGL is missing, `gpu` (an index among the visible
+// GPUs; -1: the first) does not exist, or no context with GL 4.3 compute
 // shaders can be made.
-std::unique_ptr<GlComputeContext> createGlComputeContext();
-// Whether EGL lists a GPU device (not Mesa's software one); makes no context.
+std::unique_ptr<GlComputeContext> createGlComputeContext(int gpu);
+// Whether the process sees a GPU device (not Mesa's software one); makes no context.
 bool eglGpuDeviceListed();
 
 }  // namespace sdg

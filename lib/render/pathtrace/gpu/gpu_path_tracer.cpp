@@ -175,7 +175,7 @@ void cameraPlanes(const RenderCamera& camera, int width, int height, ParamsHeade
 
 struct GpuPathTracer::Impl {
   Impl(const AssetResolver& assets, const PathTraceSettings& s)
-      : settings(s), context(createGlComputeContext()), scene(assets) {}
+      : settings(s), context(createGlComputeContext(s.gpu)), scene(assets) {}
 
   PathTraceSettings settings;
   std::unique_ptr<GlComputeContext> context;
