@@ -55,10 +55,20 @@ class Input(_Located):
 
 
 def _resolved_file(attr, path):
-    """`path` as given (the renderer resolves it as the built-ins' files), once it is known to exist."""
-    if path and attr._prim._stage._s.resolve_asset(path) is None:
+    """`path` as given (the renderer resolves it as the built-ins' files), once it is known to exist.
+    Scripts set a texture per prim per frame: a path found once is not looked up again by this stage."""
+    if not path:
+        return path
+    stage = attr._prim._stage
+    found = stage._cache.get("files")
+    if found is None:
+        found = stage._cache["files"] = set()
+    if path in found:
+        return path
+    if stage._s.resolve_asset(path) is None:
         raise _unsupported(f"UsdShade.Input.Set({path!r}) on {attr._prim._h.path}.{attr.GetName()}",
                            "the file does not exist below the scene's folder, its asset roots or --isaac-assets")
+    found.add(path)
     return path
 
 
