@@ -48,8 +48,9 @@ class Input(_Located):
         return self._attr.Get(time)
 
     def Set(self, value, time=None):
-        h = self._attr._prim._h
-        if h.attribute_type(self._attr.GetName()) in ("asset", None) and isinstance(value, (str, Sdf.AssetPath)):
+        # Only a path is checked (per prim per frame, most values are numbers): is the input a file?
+        if isinstance(value, (str, Sdf.AssetPath)) and \
+                self._attr._prim._h.attribute_type(self._attr.GetName()) in ("asset", None):
             value = _resolved_file(self._attr, value.path if isinstance(value, Sdf.AssetPath) else str(value))
         return self._attr.Set(value, time)
 
