@@ -178,8 +178,9 @@ print(json.dumps({"name": "demo with scripted location + look-at, frames/s relat
                   "median": round(ratios[2], 3), "min": round(ratios[0], 3), "max": round(ratios[-1], 3),
                   "fps": round(sorted(b for _, b in pairs)[2], 1)}))
 PY
-# Isaac Sim's location_randomizer.py on 1,000 prims through the Isaac layer,
-# next to the built-in (ms per frame; skipped without ../shared/isaac-behaviors).
+# Isaac Sim's six behavior scripts through the Isaac layer (1,000 prims; 100
+# lights; the volume stack's pre-roll), each next to its built-in (ms per
+# frame; skipped without ../shared/isaac-behaviors).
 /usr/bin/python3 tools/bench_isaac_scripts.py "$bin" >> "$lines"
 # HDR domes: what a 4k EXR dome adds to the first frame (decoding, the
 # pre-filtering, the upload), as the difference of whole-process medians of

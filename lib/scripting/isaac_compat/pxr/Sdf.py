@@ -92,7 +92,7 @@ class ValueTypeName(_Located):
         self.type_name, self.native = type_name, native
 
     def __eq__(self, other):
-        if isinstance(other, ValueTypeName):
+        if type(other) is ValueTypeName or isinstance(other, ValueTypeName):
             return other.native == self.native
         return other == self.type_name
 
@@ -124,10 +124,19 @@ class _Names:
         raise missing("pxr.Sdf.ValueTypeNames", name)
 
     def Find(self, usd):
+        # Asked per op per frame (XformOp.GetTypeName): the table's answers are remembered.
+        found = _found.get(usd)
+        if found is not None:
+            return found
         for v in vars(self).values():
             if v.type_name == usd or v.native == usd:
+                if isinstance(usd, str):
+                    _found[usd] = v
                 return v
         return ValueTypeName(usd, usd)
+
+
+_found = {}
 
 
 ValueTypeNames = _Names({

@@ -43,10 +43,13 @@ def _to_gf(value, native_type):
 
 def _to_native(value):
     """A Gf/Sdf value as what the native API takes (tuples, rows, strings)."""
+    t = type(value)
+    if t is float or t is str or t is bool or t is int:
+        return value
     if isinstance(value, Gf._Vec):
         return tuple(value)
     if isinstance(value, Gf._Quat):
-        return (value.GetReal(),) + tuple(value.GetImaginary())
+        return value._w, value._x, value._y, value._z
     if isinstance(value, Gf.Matrix4d):
         return tuple(tuple(r) for r in value._m)
     if isinstance(value, Sdf.AssetPath):
@@ -133,7 +136,8 @@ class Attribute(_Located):
         if self._name.startswith("xformOp:"):
             h.set_xform_op(self._name, _to_native(value))
             return True
-        native = None if h.has_attribute(self._name) else (self._pending.native if self._pending else None)
+        pending = self._pending  # a type to create the attribute with, unless it exists by now
+        native = None if not pending or h.has_attribute(self._name) else pending.native
         h.set_attribute(self._name, _to_native(value), native)
         self._pending = None
         return True

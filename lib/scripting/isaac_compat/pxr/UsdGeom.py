@@ -17,7 +17,7 @@ class Tokens:
 
 class XformOp(_Located):
     """One op of a prim, by attribute name ("xformOp:translate")."""
-    __slots__ = ("_prim", "_name")
+    __slots__ = ("_prim", "_name", "_type")
     # Op types and precisions, as UsdGeom.XformOp's enums.
     TypeInvalid, TypeTranslate, TypeScale = "", "translate", "scale"
     TypeRotateX, TypeRotateY, TypeRotateZ = "rotateX", "rotateY", "rotateZ"
@@ -27,7 +27,7 @@ class XformOp(_Located):
     PrecisionDouble, PrecisionFloat, PrecisionHalf = "double", "float", "half"
 
     def __init__(self, prim, name):
-        self._prim, self._name = prim, name
+        self._prim, self._name, self._type = prim, name, None
 
     def __bool__(self):
         return True
@@ -44,7 +44,13 @@ class XformOp(_Located):
         return XformOp.PrecisionDouble
 
     def GetTypeName(self):
-        return Sdf.ValueTypeNames.Find(self._prim._h.attribute_type(self._name))
+        # An op's type is its kind's (sdgbehave holds every op in doubles): asked once per op object.
+        t = self._type
+        if t is None:
+            t = Sdf.ValueTypeNames.Find(self._prim._h.attribute_type(self._name))
+            if t.native:
+                self._type = t
+        return t
 
     def GetAttr(self):
         return Usd.Attribute(self._prim, self._name)
@@ -57,8 +63,13 @@ class XformOp(_Located):
         return None
 
     def Set(self, value, time=None):
-        # A Gf vector is a list of floats, which the native call takes as it is.
-        self._prim._h.set_xform_op(self._name, value if isinstance(value, Gf._Vec) else Usd._to_native(value))
+        # A Gf vector is a list of floats, which the native call takes as it is; a quaternion its four floats.
+        t = type(value)
+        if t is Gf.Quatd or t is Gf.Quatf:
+            value = (value._w, value._x, value._y, value._z)
+        elif not isinstance(value, Gf._Vec):
+            value = Usd._to_native(value)
+        self._prim._h.set_xform_op(self._name, value)
         return True
 
     def GetOpTransform(self, time=None):
@@ -132,8 +143,13 @@ class Xformable(Imageable):
 
 
 def _matrix_from_columns(m):
-    """sdgbehave's column-vector 4x4 as a Gf.Matrix4d (rows, translation last)."""
-    return Gf.Matrix4d([[m[c][r] for c in range(4)] for r in range(4)])
+    """sdgbehave's column-vector 4x4 (four tuples of four floats) as a Gf.Matrix4d (rows, translation
+    last)."""
+    a, b, c, d = m
+    return Gf.Matrix4d._adopt([[float(a[0]), float(b[0]), float(c[0]), float(d[0])],
+                               [float(a[1]), float(b[1]), float(c[1]), float(d[1])],
+                               [float(a[2]), float(b[2]), float(c[2]), float(d[2])],
+                               [float(a[3]), float(b[3]), float(c[3]), float(d[3])]])
 
 
 class XformCache(_Located):

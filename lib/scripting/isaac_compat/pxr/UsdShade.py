@@ -48,17 +48,28 @@ class Input(_Located):
         return self._attr.Get(time)
 
     def Set(self, value, time=None):
-        h = self._attr._prim._h
-        if h.attribute_type(self._attr.GetName()) in ("asset", None) and isinstance(value, (str, Sdf.AssetPath)):
+        # Only a path is checked (per prim per frame, most values are numbers): is the input a file?
+        if isinstance(value, (str, Sdf.AssetPath)) and \
+                self._attr._prim._h.attribute_type(self._attr.GetName()) in ("asset", None):
             value = _resolved_file(self._attr, value.path if isinstance(value, Sdf.AssetPath) else str(value))
         return self._attr.Set(value, time)
 
 
 def _resolved_file(attr, path):
-    """`path` as given (the renderer resolves it as the built-ins' files), once it is known to exist."""
-    if path and attr._prim._stage._s.resolve_asset(path) is None:
+    """`path` as given (the renderer resolves it as the built-ins' files), once it is known to exist.
+    Scripts set a texture per prim per frame: a path found once is not looked up again by this stage."""
+    if not path:
+        return path
+    stage = attr._prim._stage
+    found = stage._cache.get("files")
+    if found is None:
+        found = stage._cache["files"] = set()
+    if path in found:
+        return path
+    if stage._s.resolve_asset(path) is None:
         raise _unsupported(f"UsdShade.Input.Set({path!r}) on {attr._prim._h.path}.{attr.GetName()}",
                            "the file does not exist below the scene's folder, its asset roots or --isaac-assets")
+    found.add(path)
     return path
 
 

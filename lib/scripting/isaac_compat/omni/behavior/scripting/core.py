@@ -137,6 +137,38 @@ def _install_seeding():
                     return low + span * self.random()
             return super().uniform(low, high, size)
 
+        def choice(self, a, size=None, replace=True, p=None, axis=0, shuffle=True):
+            """One element of a list of str, bool or float, drawn as numpy draws it (its index from
+            integers(0, n) as int64, or, with p for at most two elements, the first normalized cumulative
+            probability above random()), returned as numpy's scalar of the list's type; anything else is
+            numpy's own choice. Isaac's texture randomizer draws twice per
+            prim per frame, and numpy's argument handling was most of that."""
+            if size is None and replace and axis == 0 and type(a) is list and a:
+                kind = _SCALAR_TYPES.get(type(a[0]))
+                if kind is not None and all(type(x) is type(a[0]) for x in a):
+                    if p is None:
+                        return kind(a[int(self.integers(0, len(a), dtype=numpy.int64))])
+                    if type(p) is list and len(p) == len(a) <= 2 and all(type(x) is float for x in p):
+                        total, cdf = 0.0, []
+                        for x in p:
+                            if not (x >= 0.0) or x == float("inf"):
+                                break
+                            total += x
+                            cdf.append(total)
+                        else:
+                            # numpy: sum(p) within sqrt(eps) of 1, cdf normalized by its last value
+                            if abs(total - 1.0) <= _P_TOLERANCE and total > 0.0:
+                                u = self.random()
+                                last = cdf[-1]
+                                for i, c in enumerate(cdf):
+                                    if u < c / last:
+                                        return kind(a[i])
+                                return kind(a[-1])
+            return super().choice(a, size, replace, p, axis, shuffle)
+
+    _SCALAR_TYPES = {str: numpy.str_, bool: numpy.bool_, float: numpy.float64}
+    _P_TOLERANCE = numpy.sqrt(numpy.finfo(numpy.float64).eps)
+
     def default_rng(seed=None):
         if seed is None:
             b = _isaac_compat.current
