@@ -18,6 +18,16 @@
 
 namespace sdg::cli {
 
+namespace {
+std::vector<std::string>& storedCommandLine() {
+  static std::vector<std::string> args;
+  return args;
+}
+}  // namespace
+
+void setCommandLine(std::vector<std::string> args) { storedCommandLine() = std::move(args); }
+const std::vector<std::string>& commandLine() { return storedCommandLine(); }
+
 void addSceneArgs(CLI::App& cmd, SceneArgs& args) {
   cmd.add_option("scene", args.scene, "Scene file (YAML)")->required()->type_name("SCENE");
   cmd.add_option("--set", args.overrides,

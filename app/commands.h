@@ -32,6 +32,11 @@ SceneRequest sceneRequest(const SceneArgs& args);
 // "sdgbehave 0.1.0 (git describe)"
 std::string versionText();
 
+// The arguments the program was started with (argv[1..]), for commands
+// that start workers with the same ones (run --gpus).
+void setCommandLine(std::vector<std::string> args);
+const std::vector<std::string>& commandLine();
+
 // "640x480" -> (640, 480); anything else is a usage error (exit 2).
 std::pair<int, int> parseResolution(const std::string& text);
 

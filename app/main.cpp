@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
     if (!app.got_subcommand("studio")) cli::installStopSignalHandlers();
   });
 
+  cli::setCommandLine(std::vector<std::string>(argv + 1, argv + argc));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -12,6 +12,7 @@
 #include "core/text.h"
 #include "run/dataset_run.h"
 #include "run/frame_plan.h"
+#include "run/gpu_workers.h"
 #include "run/output_folder.h"
 #include "run/progress.h"
 #include "run/run_summary.h"
@@ -37,7 +38,60 @@ struct RunArgs {
   std::optional<uint64_t> shardIndex, shardCount;
   bool resume = false;
   std::vector<std::string> cameras;
+  std::string gpus;
 };
+
+// The command line for a worker of --gpus: this run's arguments without
+// --gpus (the workers get --gpu, --shard and --threads of their own).
+std::vector<std::string> workerArguments() {
+  std::vector<std::string> out;
+  const std::vector<std::string>& all = commandLine();
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (all[i] == "--gpus" || all[i] == "--threads") {
+      ++i;  // and its value
+      continue;
+    }
+    if (all[i].starts_with("--gpus=") || all[i].starts_with("--threads=")) continue;
+    out.push_back(all[i]);
+  }
+  return out;
+}
+
+// `run --gpus`: true when it ran the workers (two or more GPUs); with one
+// GPU the run goes on as today on that GPU, with none as today.
+bool runOnSeveralGpus(const RunArgs& args, LoadedScene& loaded, ImageArgs& image) {
+  const SourceLoc flag{"--gpus", 0, 0};
+  if (args.noRender) throw SceneError(flag, "--gpus renders frames; --no-render takes none");
+  if (!args.shard.empty() || args.shardIndex || args.shardCount)
+    throw SceneError(flag, "--gpus splits the run into one shard per GPU itself; it takes no --shard");
+  if (image.gpu >= 0) throw SceneError(flag, "give --gpus or --gpu, not both");
+  const std::vector<int> gpus = gpusFromSpec(args.gpus);
+  if (gpus.size() == 1) image.gpu = gpus.front();
+  if (gpus.size() < 2) return false;
+  if (args.overwrite)
+    throw SceneError(flag, "--gpus writes one shard per GPU into the folder, which --overwrite would let one worker "
+                           "empty under another; use an empty folder, or --resume");
+  if (!args.record.empty() || !args.saveStage.empty() || !args.summary.empty())
+    throw SceneError(flag, "--record, --save-stage and --summary are for one process; run without --gpus");
+  const FramePlan plan = framePlanFor(loaded.scene, FramePlanFlags{args.frames, args.iterations, "", {}, {}},
+                                      processEnvironment);
+  GpuWorkersOptions options;
+  options.executable = std::filesystem::read_symlink("/proc/self/exe").string();
+  options.args = workerArguments();
+  options.gpus = gpus;
+  options.threads = args.threads;
+  options.outDir = args.out.empty() ? "out/" + std::filesystem::path(args.scene.scene).stem().string() : args.out;
+  options.totalFrames = plan.iterations * plan.framesPerIteration;
+  options.progress = Progress::stderrIsTerminal() && log::enabled(log::Level::Info);
+  const GpuWorkersResult result = runOnGpus(options);
+  char line[320];
+  std::snprintf(line, sizeof line, "%llu frames, %llu files in %s on %zu GPUs: %.2f s, %.1f frames/s",
+                static_cast<unsigned long long>(result.frames), static_cast<unsigned long long>(result.files),
+                options.outDir.c_str(), gpus.size(), result.seconds,
+                result.seconds > 0 ? double(result.frames) / result.seconds : 0.0);
+  log::info(line);
+  return true;
+}
 
 // --camera: the render products (capture.cameras), each a Camera prim of
 // the stage; anything else is bad usage naming the flag.
@@ -98,6 +152,11 @@ void addRun(CLI::App& app, int& exitCode) {
                   "Render from this Camera prim (repeat for several; overrides capture.cameras)")
       ->type_name("PATH")
       ->allow_extra_args(false);
+  cmd->add_option("--gpus", args->gpus,
+                  "Use several GPUs of this machine: all, a number (the first N) or a list (0,2,3); one worker "
+                  "process per GPU renders a shard with its share of the cores, then the shards are merged into the "
+                  "dataset one process writes. One GPU or none: as without it")
+      ->type_name("all|N|LIST");
   cmd->add_flag("--resume", args->resume,
                 "Continue an interrupted run in --out: keep frames the manifest lists with matching files, redo the rest");
   cmd->footer(
@@ -111,6 +170,10 @@ void addRun(CLI::App& app, int& exitCode) {
     LoadedScene loaded = loadSceneForRun(sceneRequest(args->scene));
     printDropped(loaded);
     selectCameras(loaded, args->cameras);
+    if (!args->gpus.empty() && runOnSeveralGpus(*args, loaded, args->image)) {
+      exitCode = kExitOk;
+      return;
+    }
     const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
     if (!args->noRender) {
       DatasetRunOptions options;
