@@ -259,7 +259,8 @@ void DatasetRun::prepare() {
   manifest_ = std::make_unique<ManifestWriter>(
       (fs::path(options_.outDir) /
        (plan_.shard.sharded() ? "manifest." + plan_.shard.tag() + ".jsonl" : "manifest.jsonl"))
-          .string());
+          .string(),
+      options_.outDir);
   encoder_ = std::make_unique<FrameEncoder>(writers_.writers, writers_.needs, *manifest_, options_.outDir);
 
   threads_ = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -511,6 +512,7 @@ void DatasetRun::keepFinishedFramesAfterFailure() {
   }
   try {
     pool_->finish();
+    manifest_->flush();
     if (info_.contactSheet && !plan_.shard.sharded()) writeContactSheetOfFinishedFrames(options_.outDir, info_);
   } catch (const std::exception& e) {
     log::warn(std::string("while keeping the finished frames: ") + e.what());
@@ -534,6 +536,7 @@ void DatasetRun::finish() {
   if (!capture_) scene_.stage = original_;
   if (recorder_) recorder_->close();
   pool_->finish();
+  manifest_->flush();
   uint64_t written = encoder_->datasetFiles + runFiles_ + result_.simulationFrames * cameraPaths_.size();
   if (!plan_.shard.sharded()) {
     written += finalizeDataset(options_.outDir, info_).files;

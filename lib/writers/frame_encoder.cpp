@@ -76,7 +76,7 @@ void FrameEncoder::encode(ProductFrame& frame, uint64_t sequence) {
   const size_t datasetCount = files.dataset.size();  // the hidden parts are not counted
   std::vector<OutputFile>& encoded = files.dataset;
   for (OutputFile& part : files.parts) encoded.push_back(std::move(part));
-  writeFilesDurably(outDir_, encoded);
+  writeFiles(outDir_, encoded);  // made durable with the manifest's next batch (group commit)
   ManifestEntry entry{frame.frame, uint32_t(frame.product), {}};
   for (const OutputFile& f : encoded) entry.files.push_back({f.path, f.bytes.size(), sha256Hex(f.bytes)});
   manifest_.commit(sequence, std::move(entry));

@@ -91,9 +91,15 @@ std::string ManifestEntry::toLine() const {
   return j.dump() + "\n";
 }
 
-ManifestWriter::ManifestWriter(std::string path) : path_(std::move(path)) {
+ManifestWriter::ManifestWriter(std::string path, std::string dataDir) : path_(std::move(path)) {
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (fd_ < 0) throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+  dataFd_ = ::open(dataDir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dataFd_ < 0) {
+    const int error = errno;
+    ::close(fd_);
+    throw RunError("cannot open the output folder " + dataDir + ": " + std::strerror(error));
+  }
   // A crash during an append can leave a line without its newline: cut it,
   // its frame is simply redone.
   off_t size = ::lseek(fd_, 0, SEEK_END);
@@ -105,23 +111,49 @@ ManifestWriter::ManifestWriter(std::string path) : path_(std::move(path)) {
 }
 
 ManifestWriter::~ManifestWriter() {
+  // No flush here: a run that ends well flushes; one that fails keeps what
+  // its last flush made durable (keepFinishedFramesAfterFailure flushes too).
   if (fd_ >= 0) ::close(fd_);
+  if (dataFd_ >= 0) ::close(dataFd_);
 }
 
 void ManifestWriter::commit(uint64_t sequence, ManifestEntry entry) {
   std::lock_guard lock(mutex_);
   pending_.emplace(sequence, std::move(entry));
   for (auto it = pending_.find(next_); it != pending_.end(); it = pending_.find(next_)) {
-    append(it->second);
+    if (batchLines_ == 0) batchStart_ = std::chrono::steady_clock::now();
+    batch_ += it->second.toLine();
+    ++batchLines_;
     pending_.erase(it);
     ++next_;
   }
+  if (batchLines_ >= kGroupFrames ||
+      (batchLines_ > 0 && std::chrono::steady_clock::now() - batchStart_ >= std::chrono::milliseconds(kGroupMillis)))
+    flushLocked();
 }
 
-void ManifestWriter::append(const ManifestEntry& entry) {
-  const std::string line = entry.toLine();
-  if (::write(fd_, line.data(), line.size()) != ssize_t(line.size()) || ::fdatasync(fd_) != 0)
-    throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+void ManifestWriter::flush() {
+  std::lock_guard lock(mutex_);
+  flushLocked();
+}
+
+void ManifestWriter::flushLocked() {
+  if (batchLines_ == 0) return;
+  // Every file the batch lists (and its folder entry) is durable first.
+  if (::syncfs(dataFd_) != 0)
+    throw RunError("cannot sync the output folder's file system (for " + path_ + "): " + std::strerror(errno));
+  size_t done = 0;
+  while (done < batch_.size()) {
+    const ssize_t n = ::write(fd_, batch_.data() + done, batch_.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+    }
+    done += size_t(n);
+  }
+  if (::fdatasync(fd_) != 0) throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
+  batch_.clear();
+  batchLines_ = 0;
 }
 
 std::vector<ManifestEntry> readManifests(const std::string& dir) {

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <set>
 
 #include "core/diagnostics.h"
 #include "core/file_io.h"
@@ -33,17 +32,6 @@ void createParentFolder(const std::string& path) {
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) throw RunError("cannot create " + parent.string() + ": " + ec.message());
-}
-
-void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files) {
-  std::set<std::string> folders;
-  for (const OutputFile& file : files) {
-    fs::path path = fs::path(dir) / file.path;
-    createParentFolder(path.string());
-    writeFileAtomic(path.string(), file.bytes, Durability::Synced);
-    folders.insert(path.parent_path().string());
-  }
-  for (const std::string& folder : folders) syncDirectory(folder);
 }
 
 void writeFiles(const std::string& dir, const std::vector<OutputFile>& files) {

@@ -22,10 +22,9 @@ std::string contactSheetTilePath(uint64_t frame);              // relative
 
 // Creates the folders above `path`; RunError when it cannot.
 void createParentFolder(const std::string& path);
-// Writes files (paths relative to `dir`) durably: data synced before each
-// rename, then the folders synced.
-void writeFilesDurably(const std::string& dir, const std::vector<OutputFile>& files);
-// Writes files atomically without syncing (e.g. metadata, simulation frames).
+// Writes files (paths relative to `dir`) atomically (a temporary renamed
+// into place) without syncing: a frame's files become durable with the
+// manifest's next batch (writers/manifest.h, group commit).
 void writeFiles(const std::string& dir, const std::vector<OutputFile>& files);
 
 }  // namespace sdg
