@@ -6,13 +6,18 @@ BUILD  := build/$(PRESET)
 BIN    := $(BUILD)/app/sdgbehave
 PREFIX ?= /usr/local
 
-.PHONY: deps configure build install test demo bench asan fuzz clean
+.PHONY: deps-run deps configure build install test demo bench asan fuzz clean
 
-deps:
-	@tools/install-deps.sh
+# What the tool and its demo need (deps-run), and what the suite, fuzzers
+# and benchmarks add (deps).
+deps-run:
+	@tools/install-deps.sh third_party_notes/debian-packages.txt
+
+deps: deps-run
+	@tools/install-deps.sh third_party_notes/debian-packages-test.txt
 
 configure: deps
-	@cmake --preset $(PRESET) >/dev/null
+	@cmake --preset $(PRESET) -DBUILD_TESTING=ON >/dev/null
 
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
@@ -24,7 +29,10 @@ install: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-demo: build
+# Only the tool (and its image module): no tests, no developer tools.
+demo: deps-run
+	@cmake --preset release -DBUILD_TESTING=OFF >/dev/null
+	@cmake --build build/release -j $(JOBS) --target sdgbehave sdgbehave_images
 	@$(BIN) validate scenes/warehouse.yaml
 	@$(BIN) run scenes/warehouse.yaml --frames 6 --seed 10 --out out/demo --overwrite
 	@echo "demo: dataset written to out/demo"
