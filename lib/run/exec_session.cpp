@@ -1,7 +1,6 @@
 #include "run/exec_session.h"
 
-#include <unistd.h>
-
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -73,7 +72,7 @@ class ExecSession : public scripting::DriverHost {
 
   // Writers the program left attached are finished.
   void finishAll(ExecResult& result) {
-    for (auto& [id, slot] : writers_) finishWriter(slot, result);
+    for (auto& [id, slot] : writers_) finishWriter(slot);
     writers_.clear();
     for (ExecDataset& d : finished_) result.datasets.push_back(d);
     result.updates = updates_;
@@ -248,8 +247,7 @@ class ExecSession : public scripting::DriverHost {
   void detachWriter(int id) override {
     auto it = writers_.find(id);
     if (it == writers_.end()) return;
-    ExecResult unused;
-    finishWriter(it->second, unused);
+    finishWriter(it->second);
     writers_.erase(it);
   }
 
@@ -262,7 +260,7 @@ class ExecSession : public scripting::DriverHost {
     std::unique_ptr<DatasetCapture> capture;
   };
 
-  void finishWriter(WriterSlot& slot, ExecResult&) {
+  void finishWriter(WriterSlot& slot) {
     DatasetRunResult r = slot.capture->finish();
     finished_.push_back(ExecDataset{slot.folder, r.frames, r.files});
     log::info(slot.folder + ": " + std::to_string(r.frames) + " frame(s), " + std::to_string(r.files) + " files");
