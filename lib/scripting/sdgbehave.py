@@ -234,6 +234,14 @@ class _EmbeddedFinder:
             if package:
                 parts = parts[:-1]
             self._modules[".".join(parts)] = (path, source, package)
+        # Isaac's behavior package: its modules' names, sdgbehave's own sources.
+        for name, (path, package) in _ISAAC_BEHAVIOR_MODULES.items():
+            self._modules[name] = (path, files[path], package)
+        for file in _ISAAC_BEHAVIOR_STAND_INS:
+            # Named like Isaac's file, which is nowhere here: attached, it is the built-in of that name.
+            virtual = f"isaacsim/replicator/behavior/behaviors/{file}.py"
+            self._modules[f"{_ISAAC_EXTENSION}.behavior.behaviors.{file}"] = (
+                virtual, files["_isaac_behavior/stand_in_module.py"], False)
 
     def find_spec(self, fullname, path=None, target=None):
         entry = self._modules.get(fullname)
@@ -257,6 +265,21 @@ class _EmbeddedFinder:
 
 
 _EMBEDDED = None
+# Isaac's behavior package as sdgbehave provides it (isaac_compat/_isaac_behavior/, written for sdgbehave,
+# not Isaac's files): module name -> (source, is a package).
+_ISAAC_BEHAVIOR_MODULES = {
+    "isaacsim.replicator": ("_isaac_behavior/replicator_package.py", True),
+    "isaacsim.replicator.behavior": ("_isaac_behavior/package.py", True),
+    "isaacsim.replicator.behavior.global_variables": ("_isaac_behavior/names.py", False),
+    "isaacsim.replicator.behavior.base_behavior": ("_isaac_behavior/interval_base.py", False),
+    "isaacsim.replicator.behavior.utils": ("_isaac_behavior/utils_package.py", True),
+    "isaacsim.replicator.behavior.utils.behavior_utils": ("_isaac_behavior/exposed_variables.py", False),
+    "isaacsim.replicator.behavior.utils.scene_utils": ("_isaac_behavior/prim_edits.py", False),
+    "isaacsim.replicator.behavior.behaviors": ("_isaac_behavior/stand_ins.py", True),
+}
+# Isaac's six behavior modules (isaacsim.replicator.behavior.behaviors.<file>).
+_ISAAC_BEHAVIOR_STAND_INS = ("light_randomizer", "location_randomizer", "look_at_behavior", "rotation_randomizer",
+                             "texture_randomizer", "volume_stack_randomizer")
 # Isaac's behavior extension: sdgbehave ships its own (global_variables,
 # utils, behaviors standing for the built-ins), and a user's copy found
 # above a script replaces it.

@@ -108,70 +108,55 @@ def calculate_look_at_rotation(eye, target_location, up_axis, epsilon=1e-5):
     return Gf.Matrix4d().SetLookAt(eye, target_location, up_axis).GetInverse().ExtractRotation()
 
 
-def _ensure_in_order(prim, op_name):
+def _listed_order(prim):
+    """The prim's xformOpOrder as a list, and its attribute (falsy when it has none)."""
     attr = prim.GetAttribute("xformOpOrder")
-    order = list(attr.Get() or []) if attr else []
-    if op_name not in order:
-        order.append(op_name)
-        (attr if attr else prim.CreateAttribute("xformOpOrder", Sdf.ValueTypeNames.TokenArray)).Set(order)
+    return (list(attr.Get() or []) if attr else []), attr
 
 
-def _first_op(prim, op_type, add):
-    found = [op for op in _ops(prim) if op.GetOpType() == op_type]
-    return found[0] if found else add()
+def _write_op(prim, name, value, add):
+    """`value` into the prim's op `name` (the first op of that kind for the one-of-a-kind ops), made with
+    `add` when the prim has none, and the op listed in xformOpOrder."""
+    kind = name.split(":")[1]
+    op = next((o for o in _ops(prim) if (o.GetOpName() if kind.startswith("rotate") else o.GetOpType()) ==
+               (name if kind.startswith("rotate") else kind)), None)
+    (op or add()).Set(value)
+    order, attr = _listed_order(prim)
+    if name not in order:
+        (attr or prim.CreateAttribute("xformOpOrder", Sdf.ValueTypeNames.TokenArray)).Set(order + [name])
 
 
 def set_location(prim, location):
-    _first_op(prim, UsdGeom.XformOp.TypeTranslate, UsdGeom.Xformable(prim).AddTranslateOp).Set(location)
-    _ensure_in_order(prim, "xformOp:translate")
+    _write_op(prim, "xformOp:translate", location, UsdGeom.Xformable(prim).AddTranslateOp)
 
 
 def set_orientation(prim, orientation):
-    if isinstance(orientation, Gf.Quatf):
-        precision = UsdGeom.XformOp.PrecisionFloat
-    elif isinstance(orientation, Gf.Quatd):
-        precision = UsdGeom.XformOp.PrecisionDouble
-    else:
+    """An orient op at the orientation; an existing op keeps its own precision."""
+    if not isinstance(orientation, (Gf.Quatf, Gf.Quatd)):
         raise TypeError("Orientation must be Gf.Quatf or Gf.Quatd")
-    attr = prim.GetAttribute("xformOpOrder")
-    order = list(attr.Get() or []) if attr else []
-    if _ORIENT in order:
-        op = prim.GetAttribute(_ORIENT)
-        if op.GetTypeName() == Sdf.ValueTypeNames.Quatd and isinstance(orientation, Gf.Quatf):
-            orientation = Gf.Quatd(orientation)
-        elif op.GetTypeName() == Sdf.ValueTypeNames.Quatf and isinstance(orientation, Gf.Quatd):
-            orientation = Gf.Quatf(orientation)
-        op.Set(orientation)
-    else:
-        UsdGeom.Xformable(prim).AddOrientOp(precision=precision).Set(orientation)
-    _ensure_in_order(prim, _ORIENT)
+    if _ORIENT in _listed_order(prim)[0]:
+        kind = Gf.Quatf if prim.GetAttribute(_ORIENT).GetTypeName() == Sdf.ValueTypeNames.Quatf else Gf.Quatd
+        orientation = kind(orientation)
+    precision = UsdGeom.XformOp.PrecisionFloat if isinstance(orientation, Gf.Quatf) else \
+        UsdGeom.XformOp.PrecisionDouble
+    _write_op(prim, _ORIENT, orientation, lambda: UsdGeom.Xformable(prim).AddOrientOp(precision=precision))
 
 
 def set_rotation(prim, rotation):
+    """A rotateXYZ op at the rotation (Euler degrees, or a Gf.Rotation decomposed as USD does)."""
     if isinstance(rotation, Gf.Rotation):
-        angles = rotation.Decompose(Gf.Vec3d.ZAxis(), Gf.Vec3d.YAxis(), Gf.Vec3d.XAxis())
-        rotation = Gf.Vec3f(angles[2], angles[1], angles[0])
-    elif isinstance(rotation, (Gf.Vec3f, Gf.Vec3d)):
-        rotation = Gf.Vec3f(rotation)
-    else:
+        rotation = decompose_rotation(rotation, "XYZ")
+    elif not isinstance(rotation, (Gf.Vec3f, Gf.Vec3d)):
         raise TypeError("Rotation must be Gf.Vec3f, Gf.Vec3d, or Gf.Rotation")
-    attr = prim.GetAttribute("xformOpOrder")
-    order = list(attr.Get() or []) if attr else []
-    if "xformOp:rotateXYZ" in order:
-        prim.GetAttribute("xformOp:rotateXYZ").Set(rotation)
-    else:
-        UsdGeom.Xformable(prim).AddRotateXYZOp().Set(rotation)
-    _ensure_in_order(prim, "xformOp:rotateXYZ")
+    _write_op(prim, "xformOp:rotateXYZ", Gf.Vec3f(rotation), UsdGeom.Xformable(prim).AddRotateXYZOp)
 
 
 def set_scale(prim, scale):
-    _first_op(prim, UsdGeom.XformOp.TypeScale, UsdGeom.Xformable(prim).AddScaleOp).Set(scale)
-    _ensure_in_order(prim, "xformOp:scale")
+    _write_op(prim, "xformOp:scale", scale, UsdGeom.Xformable(prim).AddScaleOp)
 
 
 def set_transform_matrix(prim, transform):
-    _first_op(prim, UsdGeom.XformOp.TypeTransform, UsdGeom.Xformable(prim).AddTransformOp).Set(transform)
-    _ensure_in_order(prim, _TRANSFORM)
+    _write_op(prim, _TRANSFORM, transform, UsdGeom.Xformable(prim).AddTransformOp)
 
 
 def set_transform_attributes(prim, location=None, orientation=None, rotation=None, scale=None, transform=None):
@@ -255,26 +240,27 @@ def create_collision_walls(stage, prim, prim_path, height, thickness=0.4, physic
     frame = bound.GetMatrix()
     scale = Gf.Transform(frame).GetScale()
     box = bound.GetRange()
-    width, depth, box_height = (box.GetSize()[i] * scale[i] for i in range(3))
+    size = [box.GetSize()[i] * scale[i] for i in range(3)]
     middle = box.GetMidpoint()
-    middle = Gf.Vec3d(middle[0] * scale[0], middle[1] * scale[1], middle[2] * scale[2])
-    top = middle + Gf.Vec3d(0, 0, box_height / 2.0)
-    wall_z = top[2] + height / 2.0
-    side_x, side_y = (width + thickness) / 2.0, (depth + thickness) / 2.0
-    walls = (
-        ("floor", (top[0], top[1], top[2] - thickness / 2.0), (width, depth, thickness)),
-        ("ceiling", (top[0], top[1], top[2] + height + thickness / 2.0), (width, depth, thickness)),
-        ("left_wall", (top[0] - side_x, top[1], wall_z), (thickness, depth, height)),
-        ("right_wall", (top[0] + side_x, top[1], wall_z), (thickness, depth, height)),
-        ("front_wall", (top[0], top[1] + side_y, wall_z), (width, thickness, height)),
-        ("back_wall", (top[0], top[1] - side_y, wall_z), (width, thickness, height)),
-    )
+    top = [middle[i] * scale[i] for i in range(3)]
+    top[2] += size[2] / 2.0  # the top face's centre: the walls stand on it
+    walls = []
+    for name, axis, side in (("floor", 2, -1), ("ceiling", 2, 1), ("left_wall", 0, -1), ("right_wall", 0, 1),
+                             ("back_wall", 1, -1), ("front_wall", 1, 1)):
+        extent = [size[0], size[1], height]  # a side wall spans the volume's height
+        extent[axis] = thickness
+        centre = [top[0], top[1], top[2] + height / 2.0]
+        if axis == 2:  # floor below the top face, ceiling above the volume
+            centre[2] = top[2] - thickness / 2.0 if side < 0 else top[2] + height + thickness / 2.0
+        else:
+            centre[axis] += side * (size[axis] + thickness) / 2.0
+        walls.append((name, tuple(centre), tuple(extent)))
     root = stage.DefinePrim(omni.usd.get_stage_next_free_path(stage, f"{prim_path}/CollisionWalls", False), "Xform")
     UsdGeom.Xformable(root).AddTransformOp().Set(frame.RemoveScaleShear())
     made = []
-    for name, position, size in walls:
+    for name, position, extent in walls:
         wall = stage.DefinePrim(f"{root.GetPath()}/{name}", "Cube")
-        set_transform_attributes(wall, location=position, scale=(size[0] / 2.0, size[1] / 2.0, size[2] / 2.0))
+        set_transform_attributes(wall, location=position, scale=tuple(e / 2.0 for e in extent))
         add_colliders(wall, physics_scene=physics_scene)
         if not visible:
             UsdGeom.Imageable(wall).MakeInvisible()

@@ -1,0 +1,1 @@
+"""The modules of Isaac's behavior package (isaacsim.replicator.behavior) as sdgbehave writes them, under its own file names; sdgbehave.py's _ISAAC_BEHAVIOR_MODULES maps Isaac's module names to them."""
