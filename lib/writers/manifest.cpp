@@ -106,19 +106,33 @@ ManifestWriter::ManifestWriter(std::string path, std::string dataDir) : path_(st
   off_t keep = size;
   char c = 0;
   while (keep > 0 && ::pread(fd_, &c, 1, keep - 1) == 1 && c != '\n') --keep;
-  if (keep != size && ::ftruncate(fd_, keep) != 0)
-    throw RunError("cannot repair the manifest " + path_ + ": " + std::strerror(errno));
+  if (keep != size && ::ftruncate(fd_, keep) != 0) {
+    const int error = errno;
+    ::close(fd_);
+    ::close(dataFd_);
+    throw RunError("cannot repair the manifest " + path_ + ": " + std::strerror(error));
+  }
+  committer_ = std::thread([this] { commitLoop(); });
 }
 
 ManifestWriter::~ManifestWriter() {
-  // No flush here: a run that ends well flushes; one that fails keeps what
-  // its last flush made durable (keepFinishedFramesAfterFailure flushes too).
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (committer_.joinable()) committer_.join();
   if (fd_ >= 0) ::close(fd_);
   if (dataFd_ >= 0) ::close(dataFd_);
 }
 
+void ManifestWriter::throwIfFailed() {
+  if (failure_) std::rethrow_exception(failure_);
+}
+
 void ManifestWriter::commit(uint64_t sequence, ManifestEntry entry) {
   std::lock_guard lock(mutex_);
+  throwIfFailed();
   pending_.emplace(sequence, std::move(entry));
   for (auto it = pending_.find(next_); it != pending_.end(); it = pending_.find(next_)) {
     if (batchLines_ == 0) batchStart_ = std::chrono::steady_clock::now();
@@ -127,24 +141,57 @@ void ManifestWriter::commit(uint64_t sequence, ManifestEntry entry) {
     pending_.erase(it);
     ++next_;
   }
-  if (batchLines_ >= kGroupFrames ||
-      (batchLines_ > 0 && std::chrono::steady_clock::now() - batchStart_ >= std::chrono::milliseconds(kGroupMillis)))
-    flushLocked();
+  if (batchLines_ >= kGroupFrames) wake_.notify_one();
 }
 
 void ManifestWriter::flush() {
-  std::lock_guard lock(mutex_);
-  flushLocked();
+  std::unique_lock lock(mutex_);
+  flushTarget_ = linesTaken_ + batchLines_;
+  wake_.notify_one();
+  durable_.wait(lock, [&] { return linesDurable_ >= flushTarget_ || failure_; });
+  throwIfFailed();
 }
 
-void ManifestWriter::flushLocked() {
-  if (batchLines_ == 0) return;
+void ManifestWriter::commitLoop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    const auto due = batchStart_ + std::chrono::milliseconds(kGroupMillis);
+    const bool flushAsked = flushTarget_ > linesDurable_;
+    const bool ready = batchLines_ >= kGroupFrames || (batchLines_ > 0 && std::chrono::steady_clock::now() >= due);
+    if (failure_ || (stopping_ && !flushAsked)) return;
+    if (!ready && !flushAsked) {
+      if (batchLines_ > 0)
+        wake_.wait_until(lock, due);
+      else
+        wake_.wait(lock);
+      continue;
+    }
+    std::string lines;
+    lines.swap(batch_);
+    const size_t count = batchLines_;
+    batchLines_ = 0;
+    linesTaken_ += count;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      if (count > 0) writeBatch(lines);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error) failure_ = error;
+    else linesDurable_ += count;
+    durable_.notify_all();
+  }
+}
+
+void ManifestWriter::writeBatch(const std::string& lines) {
   // Every file the batch lists (and its folder entry) is durable first.
   if (::syncfs(dataFd_) != 0)
     throw RunError("cannot sync the output folder's file system (for " + path_ + "): " + std::strerror(errno));
   size_t done = 0;
-  while (done < batch_.size()) {
-    const ssize_t n = ::write(fd_, batch_.data() + done, batch_.size() - done);
+  while (done < lines.size()) {
+    const ssize_t n = ::write(fd_, lines.data() + done, lines.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
       throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
@@ -152,8 +199,6 @@ void ManifestWriter::flushLocked() {
     done += size_t(n);
   }
   if (::fdatasync(fd_) != 0) throw RunError("cannot write the manifest " + path_ + ": " + std::strerror(errno));
-  batch_.clear();
-  batchLines_ = 0;
 }
 
 ManifestIndex indexManifests(const std::string& dir) {

@@ -8,11 +8,14 @@
 // threads finish in, so the file's bytes do not depend on the thread count.
 #include <cstdint>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace sdg {
@@ -39,9 +42,15 @@ struct ManifestEntry {
 // of kGroupFrames lines or kGroupMillis is ready, then one syncfs() of the
 // output's file system makes every file written so far durable, and only
 // then are the batch's lines appended and the manifest synced. So a line is
-// never on disk before its files (a crash loses at most the last batch's
+// never on disk before its files (a crash loses at most the last batches'
 // lines, whose frames --resume redoes), and processes sharing one disk pay
 // one sync per batch instead of two per file.
+//
+// The syncs run on the writer's own committer thread: commit() only files
+// the line, so the write threads go on writing while a batch reaches the
+// disk. (A sync waits for every dirty page of the file system, other
+// processes' too; when it ran inside commit(), every write thread queued
+// behind it, and two workers on one disk wrote half the frames one did.)
 class ManifestWriter {
  public:
   static constexpr size_t kGroupFrames = 64;
@@ -50,27 +59,40 @@ class ManifestWriter {
   // Opens `path` for appending; a torn last line (a crash mid-append) is cut.
   // `dataDir` is the folder whose files the lines list (its file system is synced).
   ManifestWriter(std::string path, std::string dataDir);
+  // Stops the committer; lines not yet flushed are not written (a run that
+  // ends well flushes first; one that fails keeps what it flushed).
   ~ManifestWriter();
   ManifestWriter(const ManifestWriter&) = delete;
   ManifestWriter& operator=(const ManifestWriter&) = delete;
 
   // Called by writer threads when job `sequence` (0, 1, 2, ... in
-  // submission order) has written its files; lines go out in sequence order.
+  // submission order) has written its files; lines go out in sequence
+  // order. Throws the committer's failure (a full disk), if it had one.
   void commit(uint64_t sequence, ManifestEntry entry);
   // Makes every line committed so far durable (the end of a run, a failure).
   void flush();
 
  private:
-  void flushLocked();
+  void commitLoop();
+  void writeBatch(const std::string& lines);  // sync, append, sync: on the committer thread
+  void throwIfFailed();                       // with mutex_ held
   std::string path_;
   int fd_ = -1;
   int dataFd_ = -1;
   std::mutex mutex_;
-  uint64_t next_ = 0;
+  std::condition_variable wake_;      // the committer: a batch is due, a flush is asked, stop
+  std::condition_variable durable_;   // flush(): the lines it waits for are on disk
+  uint64_t next_ = 0;                 // the sequence whose line comes next
   std::map<uint64_t, ManifestEntry> pending_;
-  std::string batch_;        // lines in order, not yet durable
+  std::string batch_;                 // lines in order, not yet taken by the committer
   size_t batchLines_ = 0;
   std::chrono::steady_clock::time_point batchStart_;
+  uint64_t linesTaken_ = 0;           // lines in batches the committer took
+  uint64_t linesDurable_ = 0;         // lines of those on disk
+  uint64_t flushTarget_ = 0;          // every line before this is wanted on disk now
+  bool stopping_ = false;
+  std::exception_ptr failure_;
+  std::thread committer_;             // last: started once the rest exists
 };
 
 // Where the line that counts for each (frame, product) lies among the
