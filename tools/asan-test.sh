@@ -13,6 +13,8 @@
 # Should the tracer still crash (a fault of the sanitizer runtime, not a
 # leak), the tests that failed only that way run once more; any real finding
 # (a leak report, an ASan or UBSan error, a failed check) fails the run.
+# Tests labelled release_only (heavy end-to-end runs) are left to the
+# release suite.
 set -uo pipefail
 build=${1:?usage: tools/asan-test.sh BUILD_DIR}
 jobs=${JOBS:-$(nproc)}
@@ -25,7 +27,7 @@ export LSAN_OPTIONS=suppressions=$root/tests/lsan.supp
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 cd "$build" || exit 1
-ctest --output-on-failure -j "$jobs" 2>&1 | tee "$log"
+ctest --output-on-failure -j "$jobs" -LE release_only 2>&1 | tee "$log"
 [ "${PIPESTATUS[0]}" -eq 0 ] && exit 0
 
 tracer_crashes=$(grep -c "LeakSanitizer has encountered a fatal error" "$log")
@@ -34,4 +36,4 @@ if [ "$tracer_crashes" -eq 0 ] || [ "$real_findings" -ne 0 ]; then
   exit 1
 fi
 echo "asan: $tracer_crashes LeakSanitizer tracer crash(es) and no other finding; running the failed tests once more"
-ctest --rerun-failed --output-on-failure -j "$jobs"
+ctest --rerun-failed --output-on-failure -j "$jobs" -LE release_only

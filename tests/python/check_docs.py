@@ -1,0 +1,318 @@
+#!/usr/bin/python3
+"""The docs' examples, pasted in reading order into a fresh copy of the
+checkout, as a new user would: README.md, then the pages in the order of
+README's "Where to read on" table. Every ```sh, ```console and ```python
+block runs (the conventions are in doc_blocks.py and docs/testing.md); a
+block whose first line is `# needs: REASON` is listed as not run.
+
+usage: check_docs.py SDGBEHAVE_BINARY SOURCE_DIR BUILD_DIR [PAGE ...]
+
+The copy holds the files git lists (tracked, and untracked ones it does not
+ignore), with build/release a link to BUILD_DIR; sdgbehave's folder is first
+on PATH and the copy's python/ on PYTHONPATH (as docs/datasets-python.md says
+for a checkout). Each page runs in one bash, so a variable or `cd` of one
+block reaches the next, as in a terminal; all pages share the copy, so two
+pages writing the same folder collide as they would for a reader. With PAGE
+arguments only those pages run (still in reading order). Exits 1 naming each
+failing block's page:line, 0 when every block ran as shown."""
+import glob
+import importlib.util
+import json
+import os
+import re
+import select
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+import doc_blocks
+import doc_snippets
+
+PYTHON = "/usr/bin/python3"
+BLOCK_TIMEOUT = 120
+# The first command of a block that fails is recorded and ends the block, as
+# a reader would stop there (`return` leaves the sourced block).
+ERR_TRAP = ("trap '__rc=$?; [ -z \"$__sdg_fail\" ] && __sdg_fail=\"$LINENO: exit $__rc: $BASH_COMMAND\"; "
+            "return $__rc 2>/dev/null' ERR")
+
+
+def copy_checkout(source, build, work):
+    """The files of the checkout into `work`, build/release linked to the real build."""
+    listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                            capture_output=True, text=True)
+    if listed.returncode != 0:
+        raise RuntimeError(f"git ls-files failed in {source}: {listed.stderr.strip()}")
+    for name in sorted(set(filter(None, listed.stdout.split("\0")))):
+        src = os.path.join(source, name)
+        if not os.path.lexists(src) or os.path.isdir(src) and not os.path.islink(src):
+            continue  # deleted in the work tree, or a submodule
+        dst = os.path.join(work, name)
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        if os.path.islink(src):
+            os.symlink(os.readlink(src), dst)
+        else:
+            shutil.copy2(src, dst)
+    os.makedirs(os.path.join(work, "build"), exist_ok=True)
+    os.symlink(os.path.abspath(build), os.path.join(work, "build", "release"))
+
+
+class PageShell:
+    """One bash for a page's shell blocks: each block is sourced, so state
+    carries over; an ERR trap records the first command that failed."""
+
+    def __init__(self, work, scratch, env):
+        self.scratch, self.count = scratch, 0
+        self.bash = subprocess.Popen(["/bin/bash", "--noprofile", "--norc"], cwd=work, env=env, text=True,
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     start_new_session=True)
+        self.send(f"set -o pipefail\n{ERR_TRAP}\n")
+
+    def send(self, text):
+        self.bash.stdin.write(text)
+        self.bash.stdin.flush()
+
+    def run(self, script, merge_output=False):
+        """(exit code of the last command, first failure or '', stdout, stderr) of sourcing `script`."""
+        self.count += 1
+        base = os.path.join(self.scratch, f"step{self.count}")
+        with open(base + ".sh", "w") as f:
+            f.write(script)
+        errors = f"{base}.out" if merge_output else f"{base}.err"
+        to_errors = "2>&1" if merge_output else f"2> {errors}"
+        marker = f"__SDG_DONE_{self.count}__"
+        self.send(f"__sdg_fail=; source {base}.sh > {base}.out {to_errors} < /dev/null; __last=$?; trap - ERR; "
+                  f"printf '%s\\n%s\\n' \"$__last\" \"$__sdg_fail\" > {base}.rc; {ERR_TRAP}; echo {marker}\n")
+        deadline, seen = time.time() + BLOCK_TIMEOUT, ""
+        while marker not in seen:
+            left = deadline - time.time()
+            if left <= 0 or self.bash.poll() is not None:
+                what = "timed out" if left <= 0 else f"bash exited {self.bash.returncode}"
+                return None, f"{what} (after {BLOCK_TIMEOUT} s at most)", read(base + ".out"), read(errors)
+            ready, _, _ = select.select([self.bash.stdout], [], [], min(left, 1.0))
+            if ready:
+                seen += os.read(self.bash.stdout.fileno(), 65536).decode(errors="replace")
+        last, failure = (read(base + ".rc").split("\n") + ["", ""])[:2]
+        return int(last), failure, read(base + ".out"), "" if merge_output else read(errors)
+
+    def close(self):
+        """Ends the bash and whatever it left running (a server started with `&`)."""
+        try:
+            os.killpg(self.bash.pid, 9)
+        except ProcessLookupError:
+            pass
+        self.bash.wait()
+
+
+def read(path):
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            return f.read()
+    except FileNotFoundError:
+        return ""
+
+
+def missing_module(code):
+    """The first top-level module a Python block imports that is not installed, or None."""
+    for name in re.findall(r"^\s*(?:import|from)\s+([A-Za-z_][A-Za-z0-9_]*)", code, re.M):
+        if name != "sdgbehave" and importlib.util.find_spec(name) is None:
+            return name
+    return None
+
+
+def json_shape_problems(block, output):
+    """Each JSON answer the command printed has the keys the page shows."""
+    shown = doc_blocks.json_answers(block.text)
+    printed = [line for line in output.splitlines() if line.startswith("{")]
+    if len(printed) < len(shown):
+        return [f"the page shows {len(shown)} JSON answers, the commands printed {len(printed)}"]
+    problems = []
+    for number, (page_text, answer) in enumerate(zip(shown, printed[-len(shown):]), 1):
+        try:
+            page_value = json.loads(page_text)
+        except ValueError as e:
+            problems.append(f"answer {number} as shown is not JSON even without its '...': {e}")
+            continue
+        try:
+            value = json.loads(answer)
+        except ValueError:
+            problems.append(f"answer {number} printed is not JSON: {answer[:200]}")
+            continue
+        if set(value) != set(page_value):
+            problems.append(f"answer {number} has the keys {sorted(value)}, the page shows {sorted(page_value)}")
+    return problems
+
+
+class Runner:
+    def __init__(self, binary, work, scratch, env):
+        self.binary, self.work, self.scratch, self.env = binary, work, scratch, env
+        self.failures, self.ran, self.not_run, self.slowest = [], 0, [], []
+
+    def fail(self, block, message, stdout="", stderr=""):
+        text = f"FAIL  {block.where()}: {message}"
+        if stdout.strip():
+            text += "\n--- stdout\n" + stdout.rstrip()[-3000:]
+        if stderr.strip():
+            text += "\n--- stderr\n" + stderr.rstrip()[-3000:]
+        print(text, flush=True)
+        self.failures.append(f"{block.where()}: {message.splitlines()[0]}")
+
+    def ok(self, block, what, started):
+        took = time.time() - started
+        self.slowest.append((took, block.where()))
+        print(f"ok    {block.where()}: {what[:90]} ({took:.1f} s)", flush=True)
+
+    def page(self, name, text, pool):
+        blocks = doc_blocks.fenced_blocks(name, text)
+        context = doc_snippets.find_context(blocks)
+        # A behavior snippet depends on nothing before it: start them all now,
+        # beside the page's shell, and report them in page order.
+        in_behavior = {}
+        if context:
+            for block in blocks:
+                if block.language == "python" and not block.needs and not block.save_as and (
+                        doc_snippets.is_snippet(block) or doc_snippets.script_name(block)):
+                    folder = os.path.join(self.scratch, f"snippet_{name.replace('/', '_')}_{block.line}")
+                    in_behavior[block.line] = pool.submit(doc_snippets.run_in_behavior, self.binary, block,
+                                                          context, folder, self.env)
+        shell = PageShell(self.work, self.scratch, self.env)
+        last_output = None
+        try:
+            for block in blocks:
+                if block.save_as:
+                    target = os.path.join(self.work, block.save_as)
+                    os.makedirs(os.path.dirname(target), exist_ok=True)
+                    with open(target, "w") as f:
+                        f.write(block.text)
+                    print(f"saved {block.where()}: {block.save_as}", flush=True)
+                    continue
+                if block.language == "json" and block.adjacent and last_output is not None:
+                    for problem in json_shape_problems(block, last_output):
+                        self.fail(block, problem)
+                    last_output = None
+                    continue
+                last_output = None
+                if block.language not in doc_blocks.RUNS:
+                    continue
+                if block.needs:
+                    self.not_run.append(f"{block.where()}: needs {block.needs}")
+                    print(f"not run {block.where()}: needs {block.needs}", flush=True)
+                    continue
+                self.ran += 1
+                if block.language in doc_blocks.RUN_SHELL:
+                    last_output = self.shell_block(shell, block)
+                elif block.language == "console":
+                    self.console_block(shell, block)
+                else:
+                    self.python_block(block, in_behavior.get(block.line))
+        finally:
+            shell.close()
+
+    def shell_block(self, shell, block):
+        started = time.time()
+        code, failure, out, err = shell.run(block.text)
+        if code is None or failure:
+            line, _, what = failure.partition(": ")
+            where = f"line {block.line - 1 + int(line)}: " if line.isdigit() else ""
+            self.fail(block, f"{where}{what or failure}", out, err)
+            return None
+        self.ok(block, block.body[0].strip(), started)
+        return out
+
+    def console_block(self, shell, block):
+        steps = doc_blocks.console_steps(block.body)
+        if not steps:
+            self.fail(block, "a console block with no `$ ` command")
+        for step in steps:
+            started = time.time()
+            code, _, output, _ = shell.run(step.command + "\n", merge_output=True)
+            line = block.line + step.offset
+            if code != step.exit_code:
+                self.fail(block, f"line {line}: `{step.command}` exited {code}, the page shows {step.exit_code}"
+                          + ("" if step.exit_code else " (add `$ echo $?` and the code if it is meant to fail)"),
+                          output)
+                continue
+            printed = [printed_line.rstrip() for printed_line in output.splitlines()]
+            missing = [s for s in step.shown if s.strip() != "..." and s not in printed]
+            if missing:
+                self.fail(block, f"line {line}: `{step.command}` did not print, as the page shows:\n  "
+                          + "\n  ".join(missing), output)
+                continue
+            self.ok(block, f"$ {step.command}", started)
+
+    def python_block(self, block, in_behavior):
+        started = time.time()
+        if in_behavior:
+            problems, compared = in_behavior.result()
+            for problem in problems:
+                self.fail(block, problem)
+            if not problems:
+                self.ok(block, f"in a behavior, {compared} values as shown", started)
+            return
+        missing = missing_module(block.text)
+        if missing:
+            self.not_run.append(f"{block.where()}: imports {missing}, which is not installed")
+            print(f"not run {block.where()}: imports {missing}, which is not installed", flush=True)
+            return
+        path = os.path.join(self.scratch, f"block_{block.line}.py")
+        with open(path, "w") as f:
+            f.write(block.text)
+        try:
+            result = subprocess.run([PYTHON, path], cwd=self.work, env=self.env, capture_output=True, text=True,
+                                    timeout=BLOCK_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            self.fail(block, f"timed out after {BLOCK_TIMEOUT} s")
+            return
+        if result.returncode != 0:
+            self.fail(block, f"{PYTHON} exited {result.returncode}", result.stdout, result.stderr)
+            return
+        self.ok(block, "python", started)
+
+
+def main():
+    if len(sys.argv) < 4:
+        print(__doc__)
+        return 2
+    binary, source, build = (os.path.abspath(a) for a in sys.argv[1:4])
+    only = set(sys.argv[4:])
+    with open(os.path.join(source, "README.md"), encoding="utf-8") as f:
+        readme = f.read()
+    pages = doc_blocks.reading_order(readme, sorted(os.path.relpath(p, source)
+                                                    for p in glob.glob(os.path.join(source, "docs", "*.md"))))
+    unknown = only - set(pages)
+    if unknown:
+        print("not a docs page: " + ", ".join(sorted(unknown)))
+        return 2
+
+    with tempfile.TemporaryDirectory(prefix="sdg_docs_") as tmp:
+        work, scratch = os.path.join(tmp, "checkout"), os.path.join(tmp, "scratch")
+        os.makedirs(scratch)
+        copy_checkout(source, build, work)
+        env = dict(os.environ)
+        env["PATH"] = os.path.dirname(binary) + os.pathsep + env.get("PATH", "")
+        env["PYTHONPATH"] = os.path.join(work, "python")
+        env["TMPDIR"] = scratch  # what an example leaves in a temporary folder goes with the copy
+        env.pop("SDGBEHAVE_ISAAC_ASSETS", None)  # the docs' commands must work without one
+        runner = Runner(binary, work, scratch, env)
+        started = time.time()
+        with ThreadPoolExecutor(max_workers=2) as pool:
+            for page in pages:
+                if only and page not in only:
+                    continue
+                print(f"== {page}", flush=True)
+                with open(os.path.join(work, page), encoding="utf-8") as f:
+                    runner.page(page, f.read(), pool)
+        print(f"\n{runner.ran} blocks run in {time.time() - started:.0f} s, {len(runner.not_run)} not run, "
+              f"{len(runner.failures)} failures")
+        print("slowest: " + ", ".join(f"{where} {took:.1f} s" for took, where in sorted(runner.slowest)[::-1][:8]))
+        for item in runner.not_run:
+            print(f"  not run: {item}")
+        for failure in runner.failures:
+            print(f"  FAIL {failure}")
+        return 1 if runner.failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
