@@ -167,16 +167,16 @@ class Runner:
     def page(self, name, text, pool):
         blocks = doc_blocks.fenced_blocks(name, text)
         context = doc_snippets.find_context(blocks)
-        # A behavior snippet depends on nothing before it: start them all now,
-        # beside the page's shell, and report them in page order.
-        in_behavior = {}
+        # Behavior snippets and scripts depend on nothing before them: run
+        # them now, beside the page's shell, and report them in page order.
+        in_behavior = None
         if context:
-            for block in blocks:
-                if block.language == "python" and not block.needs and not block.save_as and (
-                        doc_snippets.is_snippet(block) or doc_snippets.script_name(block)):
-                    folder = os.path.join(self.scratch, f"snippet_{name.replace('/', '_')}_{block.line}")
-                    in_behavior[block.line] = pool.submit(doc_snippets.run_in_behavior, self.binary, block,
-                                                          context, folder, self.env)
+            chosen = [b for b in blocks if b.language == "python" and not b.needs and not b.save_as]
+            snippets = [b for b in chosen if doc_snippets.is_snippet(b)]
+            scripts = [b for b in chosen if not doc_snippets.is_snippet(b) and doc_snippets.script_name(b)]
+            folder = os.path.join(self.scratch, f"behavior_{name.replace('/', '_')}")
+            in_behavior = pool.submit(doc_snippets.run_all, self.binary, snippets, scripts, context, folder,
+                                      self.env)
         shell = PageShell(self.work, self.scratch, self.env)
         last_output = None
         try:
@@ -206,7 +206,7 @@ class Runner:
                 elif block.language == "console":
                     self.console_block(shell, block)
                 else:
-                    self.python_block(block, in_behavior.get(block.line))
+                    self.python_block(block, in_behavior)
         finally:
             shell.close()
 
@@ -244,8 +244,8 @@ class Runner:
 
     def python_block(self, block, in_behavior):
         started = time.time()
-        if in_behavior:
-            problems, compared = in_behavior.result()
+        if in_behavior and block.line in in_behavior.result():
+            problems, compared = in_behavior.result()[block.line]
             for problem in problems:
                 self.fail(block, problem)
             if not problems:

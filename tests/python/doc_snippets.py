@@ -16,7 +16,12 @@ behavior (a ```python block with `BEHAVIOR_NS = "example"` and the line
 - a script (a ```python block defining a class with its own BEHAVIOR_NS) is
   attached to the scene's /World/Box instead of `example` and run one frame.
 
-Each runs in its own folder, so one example's changes never reach another's."""
+All snippets of a page run in one sdgbehave run, one snippet per iteration
+(`--iterations N --frames 1`): the stop at the end of each iteration puts
+back what the snippet changed, as the timeline's stop does for a reader's
+run. All scripts run in one more run, attached together. A snippet or script
+that fails there runs again alone, in a folder of its own, and only a
+failure alone counts: one example's changes never reach another's."""
 import json
 import os
 import re
@@ -51,15 +56,22 @@ def _docs_same(actual, expected):
 
 
 def _docs_run(self):
+    """Runs the next snippet, once per play (one iteration each)."""
     import ast
     import json
     import os
     import re
-    if getattr(type(self), "_docs_done", False):
+    cls = type(self)
+    if getattr(cls, "_docs_ran_this_play", False):
         return
-    type(self)._docs_done = True
+    cls._docs_ran_this_play = True
     folder = os.environ["SDG_DOC_FOLDER"]
-    source = open(os.path.join(folder, "snippet.py")).read()
+    names = json.load(open(os.path.join(folder, "snippets.json")))
+    index = getattr(cls, "_docs_next", 0)
+    cls._docs_next = index + 1
+    if index >= len(names):
+        return
+    source = open(os.path.join(folder, names[index])).read()
     lines = source.splitlines()
     scope = dict(globals())
     scope["self"] = self
@@ -98,8 +110,18 @@ def _docs_run(self):
         except Exception as e:
             report["problems"].append(f"{where}: {type(e).__name__}: {e}")
             break
-    with open(os.path.join(folder, "report.json"), "w") as out:
+    with open(os.path.join(folder, names[index] + ".json"), "w") as out:
         json.dump(report, out)
+
+
+def _docs_once_per_play(cls):
+    """Lets _docs_run run again in the next play (the next iteration)."""
+    original = getattr(cls, "on_play", None)
+
+    def on_play(self, *args, **kwargs):
+        type(self)._docs_ran_this_play = False
+        return original(self, *args, **kwargs) if original else None
+    cls.on_play = on_play
 '''
 
 
@@ -122,37 +144,82 @@ def script_name(block):
     return found.group(1) if found else None
 
 
-def run_in_behavior(binary, block, context, folder, env):
-    """Runs a snippet or script block in the page's example scene; returns
-    (problems, number of values compared)."""
+def run_all(binary, snippets, scripts, context, folder, env):
+    """Runs a page's snippet and script blocks in its example scene, all
+    together first and alone where that fails; returns {block line:
+    (problems, number of values compared)}."""
+    results = {}
+    if snippets:
+        results.update(_run_snippets(binary, snippets, context, os.path.join(folder, "snippets"), env))
+    if scripts:
+        results.update(_run_scripts(binary, scripts, context, os.path.join(folder, "scripts"), env))
+    for block in snippets + scripts:
+        if results[block.line][0]:
+            print(f"again alone: {block.where()}: {results[block.line][0][0][:600]}", flush=True)
+            alone = os.path.join(folder, f"alone_{block.line}")
+            if block in snippets:
+                results[block.line] = _run_snippets(binary, [block], context, alone, env)[block.line]
+            else:
+                results[block.line] = _run_scripts(binary, [block], context, alone, env)[block.line]
+    return results
+
+
+def _run(binary, folder, iterations, env):
+    """The run of folder/scene.yaml: None, or what went wrong."""
+    try:
+        # --no-render takes one iteration only, so several render a tiny frame.
+        frames = ["--no-render"] if iterations == 1 else ["--resolution", "8x8", "--iterations", str(iterations)]
+        result = subprocess.run([binary, "run", "scene.yaml", "--frames", "1", "--out", "out"] + frames,
+                                cwd=folder, env=dict(env, SDG_DOC_FOLDER=folder), capture_output=True,
+                                text=True, timeout=120)
+    except subprocess.TimeoutExpired:
+        return "the run did not end within 120 s"
+    return f"the run exited {result.returncode}:\n{result.stderr.rstrip()}" if result.returncode else None
+
+
+def _run_snippets(binary, blocks, context, folder, env):
     scene, behavior = context
     os.makedirs(folder)
-    name = script_name(block)
-    if name:
-        scene = scene.replace("scripts: [example.py]", "scripts: [script.py]")
-        scene = re.sub(r"behaviors: \{example: \{[^}]*\}\}", "behaviors: {%s: {}}" % name, scene)
-        with open(os.path.join(folder, "script.py"), "w") as f:
+    classes = re.findall(r"^class (\w+)", behavior, re.M)
+    with open(os.path.join(folder, "example.py"), "w") as f:
+        f.write(behavior.replace(CONTEXT_MARK, "_docs_run(self)") + CHECKER
+                + "".join(f"\n_docs_once_per_play({name})\n" for name in classes))
+    names = []
+    for block in blocks:
+        names.append(f"snippet_{block.line}.py")
+        with open(os.path.join(folder, names[-1]), "w") as f:
             f.write(block.text)
-    else:
-        with open(os.path.join(folder, "example.py"), "w") as f:
-            f.write(behavior.replace(CONTEXT_MARK, "_docs_run(self)") + CHECKER)
-        with open(os.path.join(folder, "snippet.py"), "w") as f:
+    with open(os.path.join(folder, "snippets.json"), "w") as f:
+        json.dump(names, f)
+    with open(os.path.join(folder, "scene.yaml"), "w") as f:
+        f.write(scene if len(blocks) == 1 else scene.rstrip("\n") + "\nwriter: {type: BasicWriter, rgb: true}\n")
+    failed = _run(binary, folder, len(blocks), env)
+    results = {}
+    for block, name in zip(blocks, names):
+        report_path = os.path.join(folder, name + ".json")
+        if failed:
+            results[block.line] = ([failed], 0)
+        elif not os.path.exists(report_path):
+            results[block.line] = (["apply() never ran the snippet"], 0)
+        else:
+            report = json.load(open(report_path))
+            results[block.line] = ([f"{block.page}:{block.line - 1 + int(p.split(':', 1)[0])}:{p.split(':', 1)[1]}"
+                                    for p in report["problems"]], report["compared"])
+    return results
+
+
+def _run_scripts(binary, blocks, context, folder, env):
+    """Every script block attached to /World/Box, in one run of one frame."""
+    scene, _ = context
+    os.makedirs(folder)
+    files = [f"script_{block.line}.py" for block in blocks]
+    for block, name in zip(blocks, files):
+        with open(os.path.join(folder, name), "w") as f:
             f.write(block.text)
+    scene = scene.replace("scripts: [example.py]", "scripts: [%s]" % ", ".join(files))
+    attached = ", ".join("%s: {}" % script_name(block) for block in blocks)
+    scene = re.sub(r"behaviors: \{example: \{[^}]*\}\}", "behaviors: {%s}" % attached, scene)
     with open(os.path.join(folder, "scene.yaml"), "w") as f:
         f.write(scene)
-    env = dict(env, SDG_DOC_FOLDER=folder)
-    try:
-        result = subprocess.run([binary, "run", "scene.yaml", "--no-render", "--frames", "1", "--out", "out"],
-                                cwd=folder, env=env, capture_output=True, text=True, timeout=120)
-    except subprocess.TimeoutExpired:
-        return ["the run did not end within 120 s"], 0
-    if result.returncode != 0:
-        return [f"the run exited {result.returncode}:\n{result.stderr.rstrip()}"], 0
-    if name:
-        return [], 0
-    report_path = os.path.join(folder, "report.json")
-    if not os.path.exists(report_path):
-        return ["apply() never ran the snippet"], 0
-    report = json.load(open(report_path))
-    return [f"{block.page}:{block.line - 1 + int(p.split(':', 1)[0])}:{p.split(':', 1)[1]}"
-            for p in report["problems"]], report["compared"]
+    failed = _run(binary, folder, 1, env)
+    return {block.line: ([failed] if failed else [], 0) for block in blocks}
