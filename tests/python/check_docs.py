@@ -268,7 +268,13 @@ class Runner:
         if result.returncode != 0:
             self.fail(block, f"{PYTHON} exited {result.returncode}", result.stdout, result.stderr)
             return
-        self.ok(block, "python", started)
+        printed = [line.rstrip() for line in result.stdout.splitlines()]
+        shown = re.findall(r"#\s*prints:\s*(.+?)\s*$", block.text, re.M)
+        missing = [line for line in shown if line not in printed]
+        if missing:
+            self.fail(block, "did not print, as the page shows:\n  " + "\n  ".join(missing), result.stdout)
+            return
+        self.ok(block, f"python, {len(shown)} printed lines as shown", started)
 
 
 def main():

@@ -9,7 +9,8 @@ readers; in short:
   each of which must appear in what the command printed (`...` stands for
   lines left out); `$ echo $?` followed by a number is the exit code the
   command before it must end with (without it, 0).
-- ```python blocks run under /usr/bin/python3 with python/ on PYTHONPATH;
+- ```python blocks run under /usr/bin/python3 with python/ on PYTHONPATH; a
+  line commented `# prints: TEXT` must have printed the line TEXT;
   blocks that use `self` outside a class are behavior snippets, run by
   doc_snippets.py inside the page's example behavior.
 - A ```json block right after a run block is the shape of what it printed:
