@@ -11,10 +11,11 @@ The copy holds the files git lists (tracked, and untracked ones it does not
 ignore), with build/release a link to BUILD_DIR; sdgbehave's folder is first
 on PATH and the copy's python/ on PYTHONPATH (as docs/datasets-python.md says
 for a checkout). Each page runs in one bash, so a variable or `cd` of one
-block reaches the next, as in a terminal; all pages share the copy, so two
-pages writing the same folder collide as they would for a reader. With PAGE
-arguments only those pages run (still in reading order). Exits 1 naming each
-failing block's page:line, 0 when every block ran as shown."""
+block reaches the next, as in a terminal. The pages run in two lanes at once,
+each in reading order in a copy of its own (SECOND_LANE below): pages of one
+lane share their copy, so two of them writing the same folder collide as they
+would for a reader. With PAGE arguments only those pages run. Exits 1 naming
+each failing block's page:line, 0 when every block ran as shown."""
 import glob
 import importlib.util
 import json
@@ -25,6 +26,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
@@ -33,6 +35,12 @@ import doc_snippets
 
 PYTHON = "/usr/bin/python3"
 BLOCK_TIMEOUT = 120
+# Pages that run beside the others, each lane in a copy of its own (two
+# cores, and most blocks keep one busy): these share no file with the pages
+# of the first lane and use none those make. Pages in one lane see each
+# other's files, in reading order; a page not listed runs in the first lane.
+SECOND_LANE = {"docs/behaviors.md", "docs/scripting.md", "docs/studio.md", "docs/writers.md",
+               "docs/datasets-python.md"}
 # The first command of a block that fails is recorded and ends the block, as
 # a reader would stop there (`return` leaves the sourced block).
 ERR_TRAP = ("trap '__rc=$?; [ -z \"$__sdg_fail\" ] && __sdg_fail=\"$LINENO: exit $__rc: $BASH_COMMAND\"; "
@@ -148,7 +156,7 @@ def json_shape_problems(block, output):
 class Runner:
     def __init__(self, binary, work, scratch, env):
         self.binary, self.work, self.scratch, self.env = binary, work, scratch, env
-        self.failures, self.ran, self.not_run, self.slowest = [], 0, [], []
+        self.failures, self.ran, self.not_run, self.slowest, self.log = [], 0, [], [], []
 
     def fail(self, block, message, stdout="", stderr=""):
         text = f"FAIL  {block.where()}: {message}"
@@ -156,13 +164,13 @@ class Runner:
             text += "\n--- stdout\n" + stdout.rstrip()[-3000:]
         if stderr.strip():
             text += "\n--- stderr\n" + stderr.rstrip()[-3000:]
-        print(text, flush=True)
+        self.log.append(text)
         self.failures.append(f"{block.where()}: {message.splitlines()[0]}")
 
     def ok(self, block, what, started):
         took = time.time() - started
         self.slowest.append((took, block.where()))
-        print(f"ok    {block.where()}: {what[:90]} ({took:.1f} s)", flush=True)
+        self.log.append(f"ok    {block.where()}: {what[:90]} ({took:.1f} s)")
 
     def page(self, name, text, pool):
         blocks = doc_blocks.fenced_blocks(name, text)
@@ -186,7 +194,7 @@ class Runner:
                     os.makedirs(os.path.dirname(target), exist_ok=True)
                     with open(target, "w") as f:
                         f.write(block.text)
-                    print(f"saved {block.where()}: {block.save_as}", flush=True)
+                    self.log.append(f"saved {block.where()}: {block.save_as}")
                     continue
                 if block.language == "json" and block.adjacent and last_output is not None:
                     for problem in json_shape_problems(block, last_output):
@@ -198,7 +206,7 @@ class Runner:
                     continue
                 if block.needs:
                     self.not_run.append(f"{block.where()}: needs {block.needs}")
-                    print(f"not run {block.where()}: needs {block.needs}", flush=True)
+                    self.log.append(f"not run {block.where()}: needs {block.needs}")
                     continue
                 self.ran += 1
                 if block.language in doc_blocks.RUN_SHELL:
@@ -254,7 +262,7 @@ class Runner:
         missing = missing_module(block.text)
         if missing:
             self.not_run.append(f"{block.where()}: imports {missing}, which is not installed")
-            print(f"not run {block.where()}: imports {missing}, which is not installed", flush=True)
+            self.log.append(f"not run {block.where()}: imports {missing}, which is not installed")
             return
         path = os.path.join(self.scratch, f"block_{block.line}.py")
         with open(path, "w") as f:
@@ -292,32 +300,61 @@ def main():
         print("not a docs page: " + ", ".join(sorted(unknown)))
         return 2
 
-    with tempfile.TemporaryDirectory(prefix="sdg_docs_") as tmp:
-        work, scratch = os.path.join(tmp, "checkout"), os.path.join(tmp, "scratch")
-        os.makedirs(scratch)
-        copy_checkout(source, build, work)
-        env = dict(os.environ)
-        env["PATH"] = os.path.dirname(binary) + os.pathsep + env.get("PATH", "")
-        env["PYTHONPATH"] = os.path.join(work, "python")
-        env["TMPDIR"] = scratch  # what an example leaves in a temporary folder goes with the copy
-        env.pop("SDGBEHAVE_ISAAC_ASSETS", None)  # the docs' commands must work without one
-        runner = Runner(binary, work, scratch, env)
+    chosen = [page for page in pages if not only or page in only]
+    lanes = [[page for page in chosen if page not in SECOND_LANE], [page for page in chosen if page in SECOND_LANE]]
+    print_lock = threading.Lock()
+    with tempfile.TemporaryDirectory(prefix="sdg_docs_", dir=memory_folder()) as tmp:
         started = time.time()
-        with ThreadPoolExecutor(max_workers=2) as pool:
-            for page in pages:
-                if only and page not in only:
-                    continue
-                print(f"== {page}", flush=True)
-                with open(os.path.join(work, page), encoding="utf-8") as f:
-                    runner.page(page, f.read(), pool)
-        print(f"\n{runner.ran} blocks run in {time.time() - started:.0f} s, {len(runner.not_run)} not run, "
-              f"{len(runner.failures)} failures")
-        print("slowest: " + ", ".join(f"{where} {took:.1f} s" for took, where in sorted(runner.slowest)[::-1][:8]))
-        for item in runner.not_run:
+        with ThreadPoolExecutor(max_workers=2) as pool, ThreadPoolExecutor(max_workers=2) as lane_pool:
+            runners = list(lane_pool.map(lambda lane: run_lane(lane[0], lane[1], binary, source, build, tmp, pool,
+                                                                print_lock), enumerate(lanes)))
+        ran = sum(r.ran for r in runners)
+        not_run = [item for r in runners for item in r.not_run]
+        failures = [item for r in runners for item in r.failures]
+        slowest = sorted(item for r in runners for item in r.slowest)[::-1][:8]
+        print(f"\n{ran} blocks run in {time.time() - started:.0f} s, {len(not_run)} not run, {len(failures)} failures")
+        print("slowest: " + ", ".join(f"{where} {took:.1f} s" for took, where in slowest))
+        for item in not_run:
             print(f"  not run: {item}")
-        for failure in runner.failures:
+        for failure in failures:
             print(f"  FAIL {failure}")
-        return 1 if runner.failures else 0
+        return 1 if failures else 0
+
+
+def memory_folder():
+    """/dev/shm when it is a writable folder with 1 GiB free that allows
+    executables (an example builds and loads a plugin), else None (the default
+    temporary folder): removing the copies' thousands of files takes seconds
+    on a disk mounted with `discard`, and none in memory."""
+    try:
+        fs = os.statvfs("/dev/shm")
+    except OSError:
+        return None
+    usable = os.access("/dev/shm", os.W_OK) and not fs.f_flag & getattr(os, "ST_NOEXEC", 8)
+    return "/dev/shm" if usable and fs.f_bavail * fs.f_frsize > 1 << 30 else None
+
+
+def run_lane(number, pages, binary, source, build, tmp, pool, print_lock):
+    """The pages of one lane, in reading order, in a copy of the checkout of their own."""
+    work, scratch = os.path.join(tmp, f"checkout{number + 1}"), os.path.join(tmp, f"scratch{number + 1}")
+    os.makedirs(scratch)
+    copy_checkout(source, build, work)
+    env = dict(os.environ)
+    env["PATH"] = os.path.dirname(binary) + os.pathsep + env.get("PATH", "")
+    env["PYTHONPATH"] = os.path.join(work, "python")
+    env["TMPDIR"] = scratch  # what an example leaves in a temporary folder goes with the copy
+    env.pop("SDGBEHAVE_ISAAC_ASSETS", None)  # the docs' commands must work without one
+    runner = Runner(binary, work, scratch, env)
+    lane_started = time.time()
+    for page in pages:
+        page_started = time.time()
+        with open(os.path.join(work, page), encoding="utf-8") as f:
+            runner.page(page, f.read(), pool)
+        with print_lock:
+            print(f"== {page} (lane {number + 1}: {time.time() - page_started:.1f} s, the lane's "
+                  f"{time.time() - lane_started:.0f} s)\n" + "\n".join(runner.log), flush=True)
+        runner.log = []
+    return runner
 
 
 if __name__ == "__main__":
