@@ -47,14 +47,15 @@ class Block:
 
 
 def fenced_blocks(page, text):
-    """Every fenced block of a page, in order, with the last line of prose before it."""
+    """Every fenced block of a page, in order, with the paragraph of prose before it."""
     blocks, lines = [], text.splitlines()
     i, prose, adjacent = 0, "", False
     while i < len(lines):
         opening = FENCE.match(lines[i])
         if not opening:
-            if lines[i].strip():
-                prose, adjacent = lines[i], False
+            if lines[i].strip():  # the paragraph before a block, its lines joined
+                joined = i > 0 and lines[i - 1].strip() and not adjacent
+                prose, adjacent = (prose + " " + lines[i].strip()) if joined else lines[i], False
             i += 1
             continue
         indent, fence, language = len(opening.group(1)), opening.group(2), opening.group(3).lower()
