@@ -182,7 +182,7 @@ class Runner:
             chosen = [b for b in blocks if b.language == "python" and not b.needs and not b.save_as]
             snippets = [b for b in chosen if doc_snippets.is_snippet(b)]
             scripts = [b for b in chosen if not doc_snippets.is_snippet(b) and doc_snippets.script_name(b)]
-            folder = os.path.join(self.scratch, f"behavior_{name.replace('/', '_')}")
+            folder = tempfile.mkdtemp(prefix=f"behavior_{name.replace('/', '_')}_", dir=self.scratch)
             in_behavior = pool.submit(doc_snippets.run_all, self.binary, snippets, scripts, context, folder,
                                       self.env)
         shell = PageShell(self.work, self.scratch, self.env)

@@ -149,6 +149,7 @@ def run_all(binary, snippets, scripts, context, folder, env):
     together first and alone where that fails; returns {block line:
     (problems, number of values compared)}."""
     results = {}
+    os.makedirs(folder, exist_ok=True)
     if snippets:
         results.update(_run_snippets(binary, snippets, context, os.path.join(folder, "snippets"), env))
     if scripts:
