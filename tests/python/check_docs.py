@@ -49,11 +49,18 @@ ERR_TRAP = ("trap '__rc=$?; [ -z \"$__sdg_fail\" ] && __sdg_fail=\"$LINENO: exit
 
 def copy_checkout(source, build, work):
     """The files of the checkout into `work`, build/release linked to the real build."""
-    listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
-                            capture_output=True, text=True)
-    if listed.returncode != 0:
-        raise RuntimeError(f"git ls-files failed in {source}: {listed.stderr.strip()}")
-    for name in sorted(set(filter(None, listed.stdout.split("\0")))):
+    try:
+        listed = subprocess.run(["git", "-C", source, "ls-files", "-z", "--cached", "--others", "--exclude-standard"],
+                                capture_output=True, text=True)
+    except FileNotFoundError:
+        listed = None
+    if listed is None or listed.returncode != 0:
+        # Not a git checkout (an unpacked archive): its files, less what builds and runs make.
+        shutil.copytree(source, work, symlinks=True, ignore=shutil.ignore_patterns(".git", "build", "out", "bench"))
+        names = []
+    else:
+        names = sorted(set(filter(None, listed.stdout.split("\0"))))
+    for name in names:
         src = os.path.join(source, name)
         if not os.path.lexists(src) or os.path.isdir(src) and not os.path.islink(src):
             continue  # deleted in the work tree, or a submodule
