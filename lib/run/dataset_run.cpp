@@ -51,12 +51,12 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 // that still match their SHA-256 (what --resume may keep).
 std::set<uint64_t> finishedFrames(const std::string& dir, size_t products) {
   std::map<uint64_t, size_t> complete;
-  for (const ManifestEntry& e : readManifests(dir)) {
+  forEachManifestEntry(indexManifests(dir), [&](const ManifestEntry& e) {
     bool ok = true;
     for (const ManifestFile& f : e.files)
       ok = ok && sha256OfFile((fs::path(dir) / f.path).string()) == f.sha256;
     if (ok) ++complete[e.frame];
-  }
+  });
   std::set<uint64_t> done;
   for (const auto& [frame, count] : complete)
     if (count == products) done.insert(frame);

@@ -156,32 +156,66 @@ void ManifestWriter::flushLocked() {
   batchLines_ = 0;
 }
 
-std::vector<ManifestEntry> readManifests(const std::string& dir) {
-  std::map<std::pair<uint64_t, uint32_t>, ManifestEntry> byKey;
-  std::vector<fs::path> files;
+ManifestIndex indexManifests(const std::string& dir) {
+  ManifestIndex index;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (name.rfind("manifest", 0) == 0 && e.path().extension() == ".jsonl") files.push_back(e.path());
+    if (name.rfind("manifest", 0) == 0 && e.path().extension() == ".jsonl") index.files.push_back(e.path().string());
   }
-  std::sort(files.begin(), files.end());
-  for (const fs::path& file : files) {
-    std::ifstream in(file);
-    std::string line;
+  std::sort(index.files.begin(), index.files.end());
+  ManifestEntry entry;
+  std::string line;
+  for (uint32_t file = 0; file < index.files.size(); ++file) {
+    std::ifstream in(index.files[file], std::ios::binary);
+    uint64_t offset = 0;
     while (std::getline(in, line)) {
-      ManifestEntry entry;
-      if (parseLine(line, entry)) byKey[{entry.frame, entry.product}] = std::move(entry);
+      // A last line without its '\n' is torn (a crash mid-append): not counted.
+      const bool complete = !in.eof();
+      if (complete && parseLine(line, entry)) index.lines.push_back({entry.frame, entry.product, file, offset, line.size()});
+      offset += line.size() + 1;
     }
   }
+  // Lines were gathered in file and line order; a stable sort keeps that
+  // order within a key, whose last line wins.
+  auto key = [](const ManifestIndex::Line& l) { return std::pair(l.frame, l.product); };
+  std::stable_sort(index.lines.begin(), index.lines.end(),
+                   [&](const ManifestIndex::Line& a, const ManifestIndex::Line& b) { return key(a) < key(b); });
+  std::vector<ManifestIndex::Line> unique;
+  unique.reserve(index.lines.size());
+  for (size_t i = 0; i < index.lines.size(); ++i)
+    if (i + 1 == index.lines.size() || key(index.lines[i + 1]) != key(index.lines[i])) unique.push_back(index.lines[i]);
+  index.lines = std::move(unique);
+  return index;
+}
+
+void forEachManifestEntry(const ManifestIndex& index, const std::function<void(const ManifestEntry&)>& visit) {
+  std::vector<std::ifstream> files;
+  files.reserve(index.files.size());
+  for (const std::string& path : index.files) files.emplace_back(path, std::ios::binary);
+  ManifestEntry entry;
+  std::string line;
+  for (const ManifestIndex::Line& l : index.lines) {
+    std::ifstream& in = files[l.file];
+    line.resize(l.length);
+    in.seekg(std::streamoff(l.offset));
+    if (!in.read(line.data(), std::streamsize(l.length)) || !parseLine(line, entry))
+      throw RunError(index.files[l.file] + ": changed while it was read (line at byte " + std::to_string(l.offset) +
+                     ")");
+    visit(entry);
+  }
+}
+
+std::vector<ManifestEntry> readManifests(const std::string& dir) {
   std::vector<ManifestEntry> out;
-  for (auto& [key, entry] : byKey) out.push_back(std::move(entry));
+  forEachManifestEntry(indexManifests(dir), [&](const ManifestEntry& e) { out.push_back(e); });
   return out;
 }
 
-void writeCanonicalManifest(const std::string& dir, const std::vector<ManifestEntry>& entries) {
-  std::string text;
-  for (const ManifestEntry& e : entries) text += e.toLine();
-  writeFileAtomic((fs::path(dir) / "manifest.jsonl").string(), text);
+void writeCanonicalManifest(const std::string& dir, const ManifestIndex& index) {
+  AtomicFileWriter out((fs::path(dir) / "manifest.jsonl").string());
+  forEachManifestEntry(index, [&](const ManifestEntry& e) { out.append(e.toLine()); });
+  out.commit();
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();

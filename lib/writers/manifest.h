@@ -8,6 +8,7 @@
 // threads finish in, so the file's bytes do not depend on the thread count.
 #include <cstdint>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <span>
@@ -72,12 +73,29 @@ class ManifestWriter {
   std::chrono::steady_clock::time_point batchStart_;
 };
 
-// Every complete line of every manifest*.jsonl in `dir` (sorted by frame,
-// product; a later line for the same frame and product wins).
+// Where the line that counts for each (frame, product) lies among the
+// complete lines of a folder's manifest*.jsonl files: 32 bytes a line, so
+// finishing, resuming or merging a long run never holds its manifest in
+// memory (a 100,000-frame run's lines are tens of megabytes as entries).
+struct ManifestIndex {
+  struct Line {
+    uint64_t frame = 0;
+    uint32_t product = 0;
+    uint32_t file = 0;    // into files
+    uint64_t offset = 0;  // of the line's first byte
+    uint64_t length = 0;  // without its '\n'
+  };
+  std::vector<std::string> files;  // the manifests, sorted by name
+  std::vector<Line> lines;         // sorted by (frame, product); a later line for the same key wins
+};
+ManifestIndex indexManifests(const std::string& dir);
+// Calls `visit` with each indexed line's entry in order, one entry in memory at a time.
+void forEachManifestEntry(const ManifestIndex& index, const std::function<void(const ManifestEntry&)>& visit);
+// Every entry at once (verify's report lists them; small folders).
 std::vector<ManifestEntry> readManifests(const std::string& dir);
-// Rewrites manifest.jsonl sorted and without duplicates, and removes the
-// per-shard manifests it replaces.
-void writeCanonicalManifest(const std::string& dir, const std::vector<ManifestEntry>& entries);
+// Rewrites manifest.jsonl sorted and without duplicates, streaming, and
+// removes the per-shard manifests it replaces.
+void writeCanonicalManifest(const std::string& dir, const ManifestIndex& index);
 
 struct VerifyReport {
   size_t folderFiles = 0;  // regular files in the folder outside .sdgbehave/: a run's files_written
