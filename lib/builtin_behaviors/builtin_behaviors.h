@@ -1,5 +1,6 @@
 #pragma once
 // The built-in behaviors, listed in one table (builtin_behaviors.cpp).
+#include "assets/labelled_mesh.h"
 #include "behavior/registry.h"
 
 namespace sdg {
@@ -19,5 +20,9 @@ BehaviorSpec textureRandomizerSpec();
 std::unique_ptr<Behavior> makeTextureRandomizer();
 BehaviorSpec volumeStackRandomizerSpec();
 std::unique_ptr<Behavior> makeVolumeStackRandomizer();
+
+// The labelled meshes the built-ins put on the stage during a run (the
+// volume stack's assets), read from the stage as loaded.
+std::vector<LabelledMesh> meshesSpawnedByBuiltins(const Stage& stage, const AssetResolver& resolver);
 
 }  // namespace sdg

@@ -79,6 +79,26 @@ AssetEntry parseEntry(const std::string& entry) {
   return {entry, std::filesystem::path(entry).stem().string()};
 }
 
+// assets:assets, then the CSV entries, each a readable mesh file.
+std::vector<AssetEntry> assetEntriesOf(const Prim& prim, const BehaviorSpec& spec, const AssetResolver& resolver) {
+  std::vector<AssetEntry> entries;
+  for (std::string_view name : {"assets:assets", "assets:csv"}) {
+    const Attribute* attr = prim.findAttribute(exposedAttributeName(spec.name, name));
+    if (!attr) continue;
+    const SourceLoc loc = attr->loc.known() ? attr->loc : prim.loc();
+    for (const std::string& file : fileEntriesOf(*attr, *spec.findVariable(name), resolver, prim.path())) {
+      if (std::optional<std::string> problem = fileProblem(file, FileKind::Mesh, resolver))
+        throw SceneError(loc, prim.path() + ": volumeStackRandomizer: " + *problem);
+      AssetEntry e = parseEntry(file);
+      if (e.label.empty())
+        throw SceneError(loc, prim.path() + ": volumeStackRandomizer: asset " + text::quote(file) +
+                                  " has an empty label after '#'");
+      entries.push_back(std::move(e));
+    }
+  }
+  return entries;
+}
+
 void setPose(Prim& prim, const BodyPose& pose) {
   prim.xformOps() = {XformOp{XformOpKind::Translate, "", Value::makeDouble3(pose.position)},
                      XformOp{XformOpKind::Orient, "", Value::makeQuatd(pose.orientation)}};
@@ -354,26 +374,9 @@ class VolumeStackRandomizer final : public Behavior {
     return root;
   }
 
-  // assets:assets, then the CSV entries, each a readable mesh file.
   std::vector<AssetEntry> assetEntries() const {
     static const AssetResolver kNoRoots;
-    const AssetResolver& resolver = context().assets ? *context().assets : kNoRoots;
-    std::vector<AssetEntry> entries;
-    for (std::string_view name : {"assets:assets", "assets:csv"}) {
-      const Attribute* attr = prim().findAttribute(attributeName(name));
-      if (!attr) continue;
-      const SourceLoc loc = attr->loc.known() ? attr->loc : prim().loc();
-      for (const std::string& file : fileEntriesOf(*attr, *spec().findVariable(name), resolver, primPath())) {
-        if (std::optional<std::string> problem = fileProblem(file, FileKind::Mesh, resolver))
-          throw SceneError(loc, primPath() + ": volumeStackRandomizer: " + *problem);
-        AssetEntry e = parseEntry(file);
-        if (e.label.empty())
-          throw SceneError(loc, primPath() + ": volumeStackRandomizer: asset " + text::quote(file) +
-                                    " has an empty label after '#'");
-        entries.push_back(std::move(e));
-      }
-    }
-    return entries;
+    return assetEntriesOf(prim(), spec(), context().assets ? *context().assets : kNoRoots);
   }
 
   EventBus::Subscription subscription_ = 0;
@@ -434,5 +437,17 @@ BehaviorSpec volumeStackRandomizerSpec() {
 }
 
 std::unique_ptr<Behavior> makeVolumeStackRandomizer() { return std::make_unique<VolumeStackRandomizer>(); }
+
+std::vector<LabelledMesh> meshesSpawnedByBuiltins(const Stage& stage, const AssetResolver& resolver) {
+  const BehaviorSpec spec = volumeStackRandomizerSpec();
+  std::vector<LabelledMesh> out;
+  stage.traverse([&](const Prim& prim) {
+    const auto& names = prim.behaviors();
+    if (std::find(names.begin(), names.end(), spec.name) == names.end()) return;
+    for (const AssetEntry& e : assetEntriesOf(prim, spec, resolver))
+      out.push_back({"class", e.label, e.url, prim.path() + ": " + spec.name});
+  });
+  return out;
+}
 
 }  // namespace sdg

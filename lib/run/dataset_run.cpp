@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "behavior/runtime.h"
+#include "builtin_behaviors/builtin_behaviors.h"
 #include "core/diagnostics.h"
 #include "core/file_io.h"
 #include "core/log.h"
@@ -220,7 +221,7 @@ void DatasetRun::prepare() {
   settings_ = renderSettingsFor(scene_, options_.render);
   writers_ = makeWriters(scene_.writers,
                          WriterSetup{productNames_, options_.seed, settings_.width, settings_.height, &scene_.stage,
-                                     &loaded_.assets},
+                                     &loaded_.assets, meshesSpawnedByBuiltins(scene_.stage, loaded_.assets)},
                          sceneLoc_);
   keepRadiance_ = writers_.needs.radiance;
   if (keepRadiance_ && settings_.mode != RenderMode::PathTraced) {

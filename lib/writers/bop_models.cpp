@@ -176,6 +176,45 @@ std::vector<BopObject> collectBopObjects(const Stage& stage, const std::vector<s
   return objects;
 }
 
+std::optional<std::string> addSpawnedModel(BopObject& object, const std::string& taxonomy,
+                                           const std::vector<LabelledMesh>& spawned, const Stage& loaded,
+                                           const std::vector<std::string>& semanticTypes, const AssetResolver& assets) {
+  std::vector<const LabelledMesh*> files;
+  for (const LabelledMesh& m : spawned)
+    if (m.taxonomy == taxonomy && m.label == object.label &&
+        std::none_of(files.begin(), files.end(), [&](const LabelledMesh* f) { return f->url == m.url; }))
+      files.push_back(&m);
+  if (files.empty()) return "no prim is labelled " + taxonomy + ": '" + object.label + "' in the scene as loaded, " +
+                            "and no behavior spawns a mesh with that label; a BOP object's model is taken from the first one";
+  std::optional<BopObject> first;
+  for (const LabelledMesh* file : files) {
+    Stage alone;
+    alone.metadata() = loaded.metadata();
+    Prim& prim = alone.definePrim("/Model", PrimType::Mesh);
+    prim.setAttribute("asset", Value::makeAsset(file->url));
+    prim.semantics()[taxonomy] = {object.label};
+    BopObject model = collectBopObjects(alone, {object.label}, taxonomy, semanticTypes, assets).front();
+    if (!first) {
+      first = std::move(model);
+      first->modelPrim = file->url + " (spawned by " + file->spawner + ")";
+      continue;
+    }
+    bool same = model.positions.size() == first->positions.size() && model.indices == first->indices;
+    for (size_t v = 0; same && v < model.positions.size(); ++v)
+      same = (model.positions[v] - first->positions[v]).norm() < 1e-3f;  // millimetres
+    if (!same)
+      return "'" + object.label + "' is spawned from meshes of different shapes (" + files.front()->url + " and " +
+             file->url + ", by " + file->spawner + "); a BOP object has one model: give each mesh its own label " +
+             "('file#label') and list the labels";
+  }
+  object.modelPrim = first->modelPrim;
+  object.scale = Vec3d::Ones();
+  object.positions = std::move(first->positions);
+  object.normals = std::move(first->normals);
+  object.indices = std::move(first->indices);
+  return std::nullopt;
+}
+
 std::vector<OutputFile> bopModelFiles(const std::vector<BopObject>& objects) {
   std::vector<OutputFile> files;
   std::vector<std::pair<uint64_t, nlohmann::json>> info;

@@ -5,10 +5,12 @@
 // (models/obj_XXXXXX.ply), and models_info.json (diameter, extents and the
 // symmetries the scene declares), as the BOP toolkit reads them.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "assets/asset_resolver.h"
+#include "assets/labelled_mesh.h"
 #include "render/render_list.h"
 #include "stage/stage.h"
 #include "writers/output_files.h"
@@ -45,6 +47,15 @@ struct BopObject {
 std::vector<BopObject> collectBopObjects(const Stage& stage, const std::vector<std::string>& labels,
                                          const std::string& taxonomy, const std::vector<std::string>& semanticTypes,
                                          const AssetResolver& assets);
+
+// The model of an object no prim of the stage as loaded carries, from the
+// mesh files behaviors spawn with its label (`spawned`), each placed alone
+// as the behavior places it (unscaled, in the stage's units). Returns the
+// problem when none spawns it or when its files differ in shape (a BOP
+// object has one model); RunError for an unreadable mesh.
+std::optional<std::string> addSpawnedModel(BopObject& object, const std::string& taxonomy,
+                                           const std::vector<LabelledMesh>& spawned, const Stage& loaded,
+                                           const std::vector<std::string>& semanticTypes, const AssetResolver& assets);
 
 // models/obj_XXXXXX.ply (binary little-endian: x y z nx ny nz, triangles)
 // and models/models_info.json.

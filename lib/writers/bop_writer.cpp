@@ -127,8 +127,9 @@ BopWriter::BopWriter(const WriterConfig& config, const WriterSetup& setup, const
   }
   for (BopObject& o : objects_) {
     if (o.modelPrim.empty())
-      throw SceneError(locOf("objects"), "writer.objects: no prim is labelled " + taxonomy_ + ": " + text::quote(o.label) +
-                                             " in the scene as loaded; a BOP object's model is taken from the first one");
+      if (std::optional<std::string> problem =
+              addSpawnedModel(o, taxonomy_, setup.spawnedMeshes, *setup.stage, semanticTypes, *setup.assets))
+        throw SceneError(locOf("objects"), "writer.objects: " + *problem);
     o.symmetries = symmetriesOf(o.label, declared, locOf("symmetries"));
   }
   const RenderList list = buildRenderList(*setup.stage);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "assets/asset_resolver.h"
+#include "assets/labelled_mesh.h"
 #include "scene_io/scene.h"
 #include "writers/writer.h"
 
@@ -23,6 +24,7 @@ struct WriterSetup {
   int width = 0, height = 0;
   const Stage* stage = nullptr;            // as loaded (BOP's object models)
   const AssetResolver* assets = nullptr;   // meshes of the models
+  std::vector<LabelledMesh> spawnedMeshes; // what behaviors add during the run (BOP's models of those objects)
 };
 
 // What finishing the dataset needs from its writers (recorded in run.json,

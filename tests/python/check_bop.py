@@ -15,6 +15,7 @@ import sys
 import tempfile
 
 import numpy as np
+import yaml
 from PIL import Image
 
 from checklib import check, dataset_hashes, failures, finish
@@ -88,19 +89,21 @@ def is_float_list(value, n):
     return isinstance(value, list) and len(value) == n and all(isinstance(x, (int, float)) for x in value)
 
 
-def check_layout(out):
+def check_layout(out, writer):
     camera = json.load(open(f"{out}/camera.json"))
     check(sorted(camera) == ["cx", "cy", "depth_scale", "fx", "fy", "height", "width"], f"camera.json keys {sorted(camera)}")
     info = json.load(open(f"{out}/models/models_info.json"))
-    check(sorted(info) == ["1", "2", "3", "4"], f"models_info ids {sorted(info)}")
+    ids = sorted(str(i + 1) for i in range(len(writer["objects"])))
+    check(sorted(info) == ids, f"models_info ids {sorted(info)}, expected {ids}")
     for obj_id, entry in info.items():
         for key in ("diameter", "min_x", "min_y", "min_z", "size_x", "size_y", "size_z"):
             check(isinstance(entry.get(key), float), f"models_info {obj_id}.{key}: {entry.get(key)!r}")
         check(os.path.exists(f"{out}/models/obj_{int(obj_id):06d}.ply"), f"no model for obj {obj_id}")
-    check(info["2"].get("symmetries_continuous") == [{"axis": [0.0, 0.0, 1.0], "offset": [0.0, 0.0, 0.0]}],
-          f"can symmetry {info['2'].get('symmetries_continuous')}")
-    discrete = info["1"].get("symmetries_discrete", [])
-    check(len(discrete) == 2 and all(is_float_list(m, 16) for m in discrete), f"box symmetries {discrete}")
+    if writer.get("symmetries"):  # bop.yaml's: a can about z, a box in two discrete ways
+        check(info["2"].get("symmetries_continuous") == [{"axis": [0.0, 0.0, 1.0], "offset": [0.0, 0.0, 0.0]}],
+              f"can symmetry {info['2'].get('symmetries_continuous')}")
+        discrete = info["1"].get("symmetries_discrete", [])
+        check(len(discrete) == 2 and all(is_float_list(m, 16) for m in discrete), f"box symmetries {discrete}")
     scenes = sorted(glob.glob(f"{out}/train_pbr/*"))
     check([os.path.basename(s) for s in scenes] == ["000000", "000001"], f"scenes {scenes}")
     for scene in scenes:
@@ -110,7 +113,7 @@ def check_layout(out):
         check(sorted(cams) == ["0", "1", "2"] and sorted(gts) == sorted(cams) == sorted(infos), f"{scene}: image ids")
         for im, cam in cams.items():
             check(is_float_list(cam.get("cam_K"), 9) and is_float_list(cam.get("cam_R_w2c"), 9)
-                  and is_float_list(cam.get("cam_t_w2c"), 3) and cam.get("depth_scale") == 0.2, f"{scene} cam {im}: {cam}")
+                  and is_float_list(cam.get("cam_t_w2c"), 3) and cam.get("depth_scale") == writer.get("depth_scale", 1.0), f"{scene} cam {im}: {cam}")
             for gt in gts[im]:
                 check(is_float_list(gt.get("cam_R_m2c"), 9) and is_float_list(gt.get("cam_t_m2c"), 3)
                       and isinstance(gt.get("obj_id"), int), f"{scene} gt {im}: {gt}")
@@ -176,7 +179,9 @@ def main():
         run(binary, scene, whole)
         if failures:
             return finish()
-        check_layout(whole)
+        with open(scene) as f:
+            writer = yaml.safe_load(f)["writer"]
+        check_layout(whole, writer)
         checked = check_geometry(whole)
         reference = dataset_hashes(whole)
         sharded = f"{tmp}/sharded"

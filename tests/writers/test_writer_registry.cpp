@@ -19,7 +19,7 @@ TEST_CASE("writer registry: the types the scene accepts are the types it can mak
 TEST_CASE("writer registry: an unknown type is a located error with the nearest name", "[writers][registry]") {
   WriterConfig config{"BasicWritter", OptionSet(findWriterType("BasicWriter")->options), SourceLoc{"scene.yaml", 7, 3}};
   try {
-    makeWriters({config}, WriterSetup{{"Camera"}, 1, 8, 8, nullptr, nullptr}, SourceLoc{"scene.yaml", 0, 0});
+    makeWriters({config}, WriterSetup{{"Camera"}, 1, 8, 8, nullptr, nullptr, {}}, SourceLoc{"scene.yaml", 0, 0});
     FAIL("no error");
   } catch (const SceneError& e) {
     const std::string text = e.what();
@@ -34,17 +34,17 @@ TEST_CASE("writer registry: needs are derived from the annotators a writer turns
   OptionSet options(findWriterType("BasicWriter")->options);
   options.set("rgb", Value::makeBool(true));
   const SourceLoc here{"scene.yaml", 1, 1};
-  WriterSet rgbOnly = makeWriters({{"BasicWriter", options, here}}, WriterSetup{{"Camera"}, 1, 8, 8}, here);
+  WriterSet rgbOnly = makeWriters({{"BasicWriter", options, here}}, WriterSetup{{"Camera"}, 1, 8, 8, nullptr, nullptr, {}}, here);
   CHECK_FALSE(rgbOnly.needs.labels);
   CHECK_FALSE(rgbOnly.needs.passes().ids);
   options.set("bounding_box_2d_loose", Value::makeBool(true));
   options.set("distance_to_image_plane", Value::makeBool(true));
-  WriterSet boxes = makeWriters({{"BasicWriter", options, here}}, WriterSetup{{"Camera"}, 1, 8, 8}, here);
+  WriterSet boxes = makeWriters({{"BasicWriter", options, here}}, WriterSetup{{"Camera"}, 1, 8, 8, nullptr, nullptr, {}}, here);
   CHECK((boxes.needs.labels && boxes.needs.coverage && boxes.needs.passes().ids && boxes.needs.passes().imagePlane));
   CHECK_FALSE(boxes.needs.passes().normals);
   // COCO alone: a BasicWriter writing its images, then COCO, which needs the labels.
   WriterSet coco = makeWriters({{"CocoWriter", OptionSet(findWriterType("CocoWriter")->options), here}},
-                               WriterSetup{{"Camera"}, 1, 8, 8}, here);
+                               WriterSetup{{"Camera"}, 1, 8, 8, nullptr, nullptr, {}}, here);
   CHECK(coco.writers.size() == 2);
   CHECK(coco.needs.labels);
   CHECK(coco.parts.cocoFile == "coco_instances.json");
