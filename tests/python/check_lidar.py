@@ -4,8 +4,9 @@ frames): lidar_Lidar_X.npy loads with numpy as the documented structured
 array, its points lie at their range in the sensor frame and carry the
 labels of the JSON beside it (the crate's class among them); KITTI's .bin
 loads as N x 4 float32 equal to the array's x, y, z, intensity;
-sdgbehave.data reads all three; and the dataset is byte-identical with
---threads 1 and 2 and as two shards merged."""
+sdgbehave.data reads all three; the dataset is byte-identical with
+--threads 1 and 2 and as two shards merged; and the scene exported as a
+USD stage (its Lidar prim by the same attribute names) sweeps the same bytes."""
 import json
 import os
 import subprocess
@@ -63,6 +64,14 @@ def main():
         check(kitti.shape == (len(points), 4), f"KITTI shape {kitti.shape}")
         check(np.array_equal(kitti, np.stack([points[f] for f in ("x", "y", "z", "intensity")], axis=1)),
               "KITTI rows differ from the array's")
+
+        usd, again = f"{tmp}/scene.usda", f"{tmp}/usd"
+        p = subprocess.run([binary, "export-usd", scene, "--out", usd], capture_output=True, text=True)
+        check(p.returncode == 0, f"export-usd: {p.stderr[-300:]}")
+        run(binary, usd, again)
+        for name in ("lidar_Lidar_0001.npy", "lidar_Lidar_0001.json"):
+            check(open(f"{again}/{name}", "rb").read() == open(f"{one}/{name}", "rb").read(),
+                  f"{name} from the exported USD stage differs")
 
         frame = Dataset(one)[1]
         check(frame.lidar_sensors() == ["Lidar"], f"sensors {frame.lidar_sensors()}")
