@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
+#include <cstdint>
 #include <cmath>
 #include <exception>
 #include <mutex>
@@ -79,16 +81,25 @@ void LidarCaster::cast(const LidarPattern& pattern, const Matrix4d& worldFromSen
       auto scratch = std::make_unique<BlockRays>();
       for (size_t block = next++; block < blocks; block = next++) {
         const size_t first = block * kBlock, n = std::min(kBlock, total - first);
+        // A column's azimuth, time and sines, computed once for its rings.
+        uint32_t column = UINT32_MAX;
+        float azimuth = 0, time = 0, cosAzimuth = 1, sinAzimuth = 0;
         for (size_t i = 0; i < n; ++i) {
           const size_t ray = first + i;
-          const uint32_t ring = uint32_t(ray % channels), column = uint32_t(ray / channels);
+          const uint32_t ring = uint32_t(ray % channels);
+          if (uint32_t(ray / channels) != column) {
+            column = uint32_t(ray / channels);
+            azimuth = pattern.azimuth(column);
+            time = pattern.timeOffset(column);
+            const double a = double(azimuth) * std::numbers::pi / 180.0;
+            cosAzimuth = float(std::cos(a));
+            sinAzimuth = float(std::sin(a));
+          }
           LidarReturn& ret = out.returns[ray];
           ret.ring = ring;
-          ret.azimuth = pattern.azimuth(column);
-          ret.time = pattern.timeOffset(column);
-          const double a = double(ret.azimuth) * std::numbers::pi / 180.0;
-          const Vec3f local(cosElevation[ring] * float(std::cos(a)), cosElevation[ring] * float(std::sin(a)),
-                            sinElevation[ring]);
+          ret.azimuth = azimuth;
+          ret.time = time;
+          const Vec3f local(cosElevation[ring] * cosAzimuth, cosElevation[ring] * sinAzimuth, sinElevation[ring]);
           scratch->local[i] = local;
           PtRay& r = scratch->rays[i];
           r.origin = origin;
