@@ -6,7 +6,9 @@ labels of the JSON beside it (the crate's class among them); KITTI's .bin
 loads as N x 4 float32 equal to the array's x, y, z, intensity;
 sdgbehave.data reads all three; the dataset is byte-identical with
 --threads 1 and 2 and as two shards merged; and the scene exported as a
-USD stage (its Lidar prim by the same attribute names) sweeps the same bytes."""
+USD stage (its Lidar prim by the same attribute names) sweeps the same bytes;
+lidar_keep_misses keeps every ray; TorchDataset(lidar=True) gives each
+point's class index (where torch is installed)."""
 import json
 import os
 import subprocess
@@ -73,11 +75,32 @@ def main():
             check(open(f"{again}/{name}", "rb").read() == open(f"{one}/{name}", "rb").read(),
                   f"{name} from the exported USD stage differs")
 
+        kept = f"{tmp}/kept"
+        run(binary, scene, kept, "--set", "writer.lidar_keep_misses=true")
+        rays = np.load(f"{kept}/lidar_Lidar_0001.npy")
+        check(len(rays) == 16 * 900, f"kept {len(rays)} rows of 16 x 900 rays")
+        hits = rays[rays["range"] > 0]
+        check(np.array_equal(hits, points), "the kept sweep's hits differ from the sweep")
+        misses = rays[rays["range"] == 0]
+        check(len(misses) > 0 and (misses["semantic_id"] == 0).all() and (misses["x"] == 0).all(),
+              "misses not kept as range 0, id 0 rows")
+
         frame = Dataset(one)[1]
         check(frame.lidar_sensors() == ["Lidar"], f"sensors {frame.lidar_sensors()}")
         check(np.array_equal(frame.lidar(), points), "sdgbehave.data's lidar() differs")
         check(np.array_equal(frame.lidar_kitti(), kitti), "sdgbehave.data's lidar_kitti() differs")
         check(frame.lidar_info()["world_from_sensor"].shape == (4, 4), "lidar_info pose")
+        try:
+            from sdgbehave.data import TorchDataset
+        except ImportError:
+            TorchDataset = None
+        if TorchDataset is not None:
+            run(binary, scene, f"{tmp}/boxes", "--set", "writer.bounding_box_2d_tight=true")
+            torch_data = TorchDataset(f"{tmp}/boxes", lidar=True, masks=False, semantic=False)
+            target = torch_data[1][1]["lidar"]["Lidar"]
+            names = [torch_data.class_names[int(i)] for i in target["labels"]]
+            check(target["points"].shape == (len(points), 3) and "crate" in names,
+                  f"TorchDataset lidar target {target['points'].shape}, classes {set(names)}")
     return finish("ok: LiDAR sweeps read back, identical across threads and shards")
 
 
