@@ -437,6 +437,10 @@ void DatasetRun::castLidars(FrameScene& scene, uint64_t frame) {
   for (size_t i = 0; i < lidarPaths_.size(); ++i) {
     const Prim* prim = scene_.stage.find(lidarPaths_[i]);
     if (!prim || prim->type() != PrimType::Lidar) throw RunError("Lidar " + lidarPaths_[i] + " is gone");
+    // A behavior may have changed the sensor since the scene was checked.
+    if (const auto problems = lidarProblems(*prim); !problems.empty())
+      throw RunError("frame " + std::to_string(frame) + ": " + prim->path() + "." + problems.front().attribute + ": " +
+                     problems.front().message);
     LidarSweep& sweep = scene.lidars[i];
     sweep.path = lidarPaths_[i];
     sweep.preset = prim->getString("preset");
