@@ -14,6 +14,7 @@
 #include "core/diagnostics.h"
 #include "core/file_io.h"
 #include "core/log.h"
+#include "lidar/lidar_caster.h"
 #include "render/raster/renderer.h"
 #include "run/dataset_finalize.h"
 #include "run/color_renderer_choice.h"
@@ -23,6 +24,7 @@
 #include "run/renderer_bringup.h"
 #include "run/run_inputs.h"
 #include "run/scene_setup.h"
+#include "stage/lidar_pattern.h"
 #include "stage/path.h"
 #include "writers/contact_sheet.h"
 #include "writers/frame_encoder.h"
@@ -127,6 +129,36 @@ std::vector<std::string> productNamesOf(const std::vector<std::string>& cameraPa
   return names;
 }
 
+// The Lidar prims whose sweeps a writer writes: capture.lidars, or every
+// Lidar prim of the stage. Listed sensors without such a writer, or a writer
+// without a sensor, are errors rather than a silent nothing.
+std::vector<std::string> capturedLidars(const Scene& scene, bool written, const SourceLoc& sceneLoc) {
+  std::vector<std::string> paths = scene.capture.get("lidars").get<std::vector<std::string>>();
+  const SourceLoc* listedAt = scene.capture.locOf("lidars");
+  if (!written) {
+    if (!paths.empty())
+      throw SceneError(listedAt ? *listedAt : sceneLoc,
+                       "capture.lidars: no writer writes LiDAR sweeps; set `lidar: true` on a BasicWriter");
+    return {};
+  }
+  if (paths.empty())
+    scene.stage.traverse([&](const Prim& p) {
+      if (p.type() == PrimType::Lidar) paths.push_back(p.path());
+    });
+  if (paths.empty()) {
+    const SourceLoc* at = nullptr;
+    for (const WriterConfig& w : scene.writers)
+      if (!at) at = w.options.locOf("lidar");
+    throw SceneError(at ? *at : sceneLoc, "writer.lidar: the scene has no Lidar prim to scan with");
+  }
+  std::set<std::string> names;
+  for (const std::string& p : paths)
+    if (!names.insert(std::string(path::name(p))).second)
+      throw SceneError(listedAt ? *listedAt : sceneLoc,
+                       "two Lidar prims are named " + std::string(path::name(p)) + "; sweep files are named after the sensor");
+  return paths;
+}
+
 }  // namespace
 
 // A run with pixels, in the order it happens: prepare (products, writers,
@@ -160,6 +192,7 @@ class DatasetRun {
   void submit(std::shared_ptr<ProductFrame> frame);
   void keepFinishedFramesAfterFailure();
   void finish();
+  void castLidars(FrameScene& scene, uint64_t frame);
   void warnOnce(bool& said, const std::string& message);
   void checkLabels();
   void checkBlack(const ProductFrame& frame);
@@ -171,6 +204,8 @@ class DatasetRun {
   const SourceLoc sceneLoc_;
   const Clock::time_point start_ = Clock::now();
   std::vector<std::string> cameraPaths_, productNames_;
+  std::vector<std::string> lidarPaths_;  // sensors swept each frame
+  std::unique_ptr<LidarCaster> lidarCaster_;
   RenderSettings settings_;
   RunInfo info_;
   DatasetRunResult result_;
@@ -224,6 +259,7 @@ void DatasetRun::prepare() {
                                      &loaded_.assets, meshesSpawnedByBuiltins(scene_.stage, loaded_.assets)},
                          sceneLoc_);
   keepRadiance_ = writers_.needs.radiance;
+  lidarPaths_ = capturedLidars(scene_, writers_.needs.lidar, sceneLoc_);
   if (keepRadiance_ && settings_.mode != RenderMode::PathTraced) {
     const SourceLoc* at = nullptr;
     for (const WriterConfig& w : scene_.writers)
@@ -266,6 +302,7 @@ void DatasetRun::prepare() {
 
   threads_ = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
   passes_ = writers_.needs.passes();
+  if (!lidarPaths_.empty()) lidarCaster_ = std::make_unique<LidarCaster>(loaded_.assets, threads_);
   startRenderer(initialList);
   const SourceLoc* tracerAt = scene_.render.locOf("pathtracer");
   RendererBringUp& bringUp = *bringUp_;
@@ -382,12 +419,36 @@ void DatasetRun::renderFrame(Renderer& renderer, uint64_t frame, uint64_t iterat
   for (const RenderItem& item : scene->list.items) scene->itemBounds.push_back(renderer.meshBounds(item));
   scene->previous = std::move(previous);
   scene->nextKnown = !writers_.needs.motion;
+  if (lidarCaster_) castLidars(*scene, frame);
   if (writers_.needs.motion) awaitingNext_ = scene;
   for (size_t product = 0; product < cameraPaths_.size(); ++product)
     renderProduct(renderer, scene, frame, iteration, first, product);
   log::debug("frame " + std::to_string(frame) + " rendered");
   ++result_.frames;
   progress_->update(result_.frames);
+}
+
+// Every captured sensor's sweep of this frame, at the frame's poses (the
+// sweep is instantaneous: docs/scene-format.md, "Lidar"), cast on the run's
+// threads while the pool encodes earlier frames.
+void DatasetRun::castLidars(FrameScene& scene, uint64_t frame) {
+  const auto start = Clock::now();
+  lidarCaster_->setScene(scene.list);
+  scene.lidars.resize(lidarPaths_.size());
+  for (size_t i = 0; i < lidarPaths_.size(); ++i) {
+    const Prim* prim = scene_.stage.find(lidarPaths_[i]);
+    if (!prim || prim->type() != PrimType::Lidar) throw RunError("Lidar " + lidarPaths_[i] + " is gone");
+    // A behavior may have changed the sensor since the scene was checked.
+    if (const auto problems = lidarProblems(*prim); !problems.empty())
+      throw RunError("frame " + std::to_string(frame) + ": " + prim->path() + "." + problems.front().attribute + ": " +
+                     problems.front().message);
+    LidarSweep& sweep = scene.lidars[i];
+    sweep.path = lidarPaths_[i];
+    sweep.preset = prim->getString("preset");
+    lidarCaster_->cast(lidarPatternOf(*prim), scene_.stage.worldMatrix(*prim), scene.list.metersPerUnit,
+                       lidarSeed(options_.seed, sweep.path, frame), sweep);
+  }
+  result_.stages.render += since(start);
 }
 
 // The frame waiting for its successor's poses gets them (null: it is the

@@ -2,6 +2,7 @@
 
 #include "assets/inline_mesh.h"
 #include "core/text.h"
+#include "stage/lidar_pattern.h"
 
 namespace sdg {
 namespace {
@@ -23,8 +24,30 @@ void validateCamera(const Prim& prim, Diagnostics& diag) {
                    " and far " + text::formatFloat(range.y()));
 }
 
+void validateLidar(const Prim& prim, Diagnostics& diag) {
+  for (const LidarProblem& p : lidarProblems(prim))
+    diag.error(attributeLoc(prim, p.attribute), prim.path() + "." + p.attribute + ": " + p.message);
+}
+
+// capture.<key>: each path names an existing prim of `type`.
+void validateCapturedPrims(const Scene& scene, const char* key, PrimType type, Diagnostics& diag) {
+  const auto& paths = scene.capture.get(key).get<std::vector<std::string>>();
+  const SourceLoc* at = scene.capture.locOf(key);
+  const std::string typeName(primTypeInfo(type).name);
+  for (const std::string& path : paths) {
+    const Prim* prim = scene.stage.find(path);
+    SourceLoc loc = at ? *at : SourceLoc{scene.sourcePath, 0, 0};
+    if (!prim)
+      diag.error(loc, std::string("capture.") + key + ": " + text::quote(path) + " does not exist");
+    else if (prim->type() != type)
+      diag.error(loc, std::string("capture.") + key + ": " + path + " is a " + std::string(prim->typeInfo().name) +
+                          ", not a " + typeName);
+  }
+}
+
 void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& catalog, Diagnostics& diag) {
   if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
+  if (prim.type() == PrimType::Lidar) validateLidar(prim, diag);
   if (prim.type() == PrimType::Mesh && prim.getString("asset").empty()) {
     if (auto mesh = inlineMeshOf(prim, stage.metadata().subdivisionLevel)) {
       std::string attribute;
@@ -70,16 +93,8 @@ void validateScene(const Scene& scene, const BehaviorCatalog& catalog, Diagnosti
                "render.resolution: each side is limited to " + std::to_string(kMaxResolution) + " pixels, found " +
                    std::to_string(resolution.x()) + " x " + std::to_string(resolution.y()));
   }
-  const auto& cameras = scene.capture.get("cameras").get<std::vector<std::string>>();
-  const SourceLoc* camerasLoc = scene.capture.locOf("cameras");
-  for (const std::string& path : cameras) {
-    const Prim* prim = scene.stage.find(path);
-    SourceLoc loc = camerasLoc ? *camerasLoc : SourceLoc{scene.sourcePath, 0, 0};
-    if (!prim)
-      diag.error(loc, "capture.cameras: " + text::quote(path) + " does not exist");
-    else if (prim->type() != PrimType::Camera)
-      diag.error(loc, "capture.cameras: " + path + " is a " + std::string(prim->typeInfo().name) + ", not a Camera");
-  }
+  validateCapturedPrims(scene, "cameras", PrimType::Camera, diag);
+  validateCapturedPrims(scene, "lidars", PrimType::Lidar, diag);
 }
 
 }  // namespace sdg

@@ -66,6 +66,9 @@ const std::vector<AttributeSpec>& captureSpecs() {
   static const std::vector<AttributeSpec> specs = {
       option("cameras", Value::makeStringArray({}),
              "Camera prims to render, one render product each; empty means every Camera prim of the stage."),
+      option("lidars", Value::makeStringArray({}),
+             "Lidar prims to scan, one sweep each per frame, written by a writer with `lidar: true`; empty means "
+             "every Lidar prim of the stage."),
       option("frames", Value::makeUInt(1), "Number of frames to capture (per iteration; --frames overrides)."),
       atLeast(1, option("iterations", Value::makeUInt(1),
                         "Independent repetitions: each re-runs the pre-roll (fresh stacks) with random streams derived "
@@ -138,6 +141,13 @@ const std::vector<AttributeSpec>& basicWriterSpecs() {
            "forward_flow_X.npy: float32 (H, W, 2) optical flow to the next frame, (row, column) pixels (Kubric's)."),
       flag("backward_flow", false,
            "backward_flow_X.npy: float32 (H, W, 2) optical flow to the previous frame, (row, column) pixels."),
+      flag("lidar", false,
+           "lidar_<sensor>_X.npy: each capture.lidars sensor's sweep (a structured array of points in the sensor "
+           "frame with range, intensity, ring, azimuth, time, semantic and instance ids) and lidar_<sensor>_X.json "
+           "(pose and labels)."),
+      flag("lidar_kitti", false, "Also lidar_<sensor>_X.bin: KITTI's N x 4 float32 (x, y, z, intensity)."),
+      flag("lidar_keep_misses", false,
+           "Keep rays that return nothing (no hit in range, or dropped) as points with range 0 and x, y, z 0."),
       tokens(option("image_output_format", Value::makeToken("png"), "File format of the rgb output."), {"png"}),
       flag("colorize_semantic_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),
       flag("colorize_instance_id_segmentation", true, "Write colours (RGBA PNG) instead of raw ids."),

@@ -259,7 +259,9 @@ class Importer {
       if (isPointInstancer(prim) && isPointInstancerAttribute(prop.name)) continue;
       if (prim.typeName == "Skeleton" && isSkeletonAttribute(prop.name)) continue;
       if (!spec && prop.custom && !quietlyIgnored(prop.name) && importCustom(prim, prop, p)) continue;
-      if (!spec || arrayWidth(spec->type) != 0 || spec->name == "asset") {
+      // Array attributes are geometry, read with the mesh, except a Lidar's elevations.
+      const bool geometryArray = spec && arrayWidth(spec->type) != 0 && type != PrimType::Lidar;
+      if (!spec || geometryArray || spec->name == "asset") {
         if (!spec && !quietlyIgnored(prop.name)) {
           if (knownType) report_.losses.note(UsdLossKind::Attribute, prop.name, prop.loc, prim.path);
           warnOnce(prop.loc, "attr:" + prim.typeName + ":" + prop.name,

@@ -150,6 +150,35 @@ std::vector<PrimTypeInfo> buildTable() {
                        tokenAttr("projection", "perspective", {"perspective", "orthographic"}, "Projection model."),
                        positive(attr("focusDistance", Value::makeFloat(0.0f), "Distance to the focus plane (metadata only).")),
                        positive(attr("fStop", Value::makeFloat(0.0f), "Lens aperture; 0 disables depth of field (metadata only)."))})});
+  t.push_back({PrimType::Lidar, "Lidar", true, false, false,
+               "A LiDAR sensor: a spinning (or solid-state) pattern of rays cast from the prim's origin, x forward, "
+               "y left, z up (its spin axis); one sweep per captured frame (capture.lidars).",
+               concat(imageable(),
+                      {tokenAttr("preset", "none", {"none", "VLP-16", "HDL-32E", "OS1-64", "OS1-128"},
+                                 "A published sensor's channels and elevations (docs/scene-format.md cites each); "
+                                 "'none' takes channels and elevations or verticalFov."),
+                       tokenAttr("pattern", "spinning", {"spinning", "solidState"},
+                                 "spinning: horizontalResolution azimuths over 360 degrees; solidState: over "
+                                 "horizontalFov, centred on +x."),
+                       attr("channels", Value::makeInt(16), "Number of beams (rings) per azimuth."),
+                       attr("elevations", Value::makeFloatArray(ValueType::FloatArray, {}),
+                            "Each ring's elevation (degrees above the x-y plane), one per channel; empty: "
+                            "verticalFov evenly spaced."),
+                       attr("verticalFov", Value::makeFloat2(-15.0f, 15.0f),
+                            "Lowest and highest elevation (degrees) of evenly spaced rings, used when elevations is empty."),
+                       attr("horizontalFov", Value::makeFloat(120.0f),
+                            "solidState: the azimuth span (degrees), centred on +x."),
+                       attr("horizontalResolution", Value::makeInt(1800),
+                            "Azimuths per sweep (points per revolution per channel; per horizontalFov for solidState)."),
+                       attr("rotationRate", Value::makeFloat(10.0f),
+                            "Sweeps per second (Hz): a sweep lasts 1 / rotationRate (the points' time offsets)."),
+                       attr("range", Value::makeFloat2(0.1f, 100.0f),
+                            "Nearest and farthest return (metres); rays hitting nothing in it return nothing."),
+                       attr("rangeNoise", Value::makeFloat(0.0f), "Standard deviation of the Gaussian range noise (metres)."),
+                       attr("dropout", Value::makeFloat(0.0f), "Probability that a return is lost, 0 to 1."),
+                       attr("beamDivergence", Value::makeFloat(0.0f),
+                            "Full beam divergence angle (milliradians); recorded in the sweep's JSON, not traced "
+                            "(every ray is a line).")})});
   t.push_back({PrimType::DistantLight, "DistantLight", true, false, true,
                "Parallel light shining down the prim's local -Z axis.",
                [] {

@@ -13,7 +13,7 @@ namespace sdg {
 
 enum class PrimType {
   Xform, Scope, Mesh, Cube, Sphere, Cylinder, Cone, Capsule, Plane, Camera,
-  DistantLight, SphereLight, RectLight, DiskLight, CylinderLight, DomeLight, Material,
+  DistantLight, SphereLight, RectLight, DiskLight, CylinderLight, DomeLight, Material, Lidar,
 };
 
 struct PrimTypeInfo {

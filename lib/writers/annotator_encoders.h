@@ -43,5 +43,7 @@ void boundingBox2dLoose(const AnnotatorOutput& out);
 void boundingBox3d(const AnnotatorOutput& out);
 void occlusion(const AnnotatorOutput& out);
 void pointcloud(const AnnotatorOutput& out);
+// lidar_encoder.cpp: the frame's LiDAR sweeps (with the first render product only).
+void lidar(const AnnotatorOutput& out);
 
 }  // namespace sdg::encoders

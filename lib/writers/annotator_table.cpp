@@ -18,6 +18,7 @@ AnnotatorNeeds& AnnotatorNeeds::operator|=(const AnnotatorNeeds& o) {
   coverage = coverage || o.coverage;
   radiance = radiance || o.radiance;
   motion = motion || o.motion;
+  lidar = lidar || o.lidar;
   return *this;
 }
 
@@ -40,9 +41,13 @@ std::string BasicLayout::prefix(size_t product, const std::string& annotator) co
 
 std::string BasicLayout::path(size_t product, uint64_t frame, const std::string& annotator, const std::string& kind,
                               const char* ext) const {
+  return prefix(product, annotator) + rootPath(frame, kind, ext);
+}
+
+std::string BasicLayout::rootPath(uint64_t frame, const std::string& kind, const char* ext) const {
   std::string n = std::to_string(frame);
   if (n.size() < framePadding_) n.insert(0, framePadding_ - n.size(), '0');
-  return prefix(product, annotator) + kind + "_" + n + "." + ext;
+  return kind + "_" + n + "." + ext;
 }
 
 void AnnotatorOutput::add(const std::string& annotator, const std::string& kind, const char* ext,
@@ -137,7 +142,8 @@ std::span<const AnnotatorInfo> annotatorTable() {
   // coverage where an entity's unoccluded extent counts.
   constexpr AnnotatorNeeds none{}, normalsPass{.normals = true}, imagePlane{.imagePlane = true}, ids{.ids = true},
       labels{.labels = true}, covered{.labels = true, .coverage = true}, radiance{.radiance = true},
-      cloud{.normals = true, .labels = true}, motion{.imagePlane = true, .ids = true, .motion = true};
+      cloud{.normals = true, .labels = true}, motion{.imagePlane = true, .ids = true, .motion = true},
+      lidar{.lidar = true};
   static const AnnotatorInfo table[] = {
       {"rgb", none, encoders::rgb},
       {"semantic_segmentation", labels, encoders::semanticSegmentation},
@@ -156,6 +162,7 @@ std::span<const AnnotatorInfo> annotatorTable() {
       {"pointcloud", cloud, encoders::pointcloud},
       {"forward_flow", motion, encoders::forwardFlow},
       {"backward_flow", motion, encoders::backwardFlow},
+      {"lidar", lidar, encoders::lidar},
   };
   return table;
 }

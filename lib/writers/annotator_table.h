@@ -29,6 +29,7 @@ struct AnnotatorNeeds {
   bool coverage = false;    // each entity drawn alone: loose boxes, occlusion, full silhouettes
   bool radiance = false;    // linear radiance (render.mode pathtraced)
   bool motion = false;      // poses of the frames before and after
+  bool lidar = false;       // the frame's LiDAR sweeps (capture.lidars)
 
   AnnotatorNeeds& operator|=(const AnnotatorNeeds& o);
   PassSelection passes() const;
@@ -41,6 +42,8 @@ class BasicLayout {
   BasicLayout(std::vector<std::string> products, uint32_t framePadding, bool commonOutputDir);
   std::string path(size_t product, uint64_t frame, const std::string& annotator, const std::string& kind,
                    const char* ext) const;
+  // <kind>_<frame>.<ext> at the folder's root, whatever the products.
+  std::string rootPath(uint64_t frame, const std::string& kind, const char* ext) const;
 
  private:
   std::string prefix(size_t product, const std::string& annotator) const;

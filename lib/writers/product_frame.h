@@ -9,6 +9,7 @@
 
 #include "render/coverage_masks.h"
 #include "render/frame_passes.h"
+#include "render/lidar_sweep.h"
 #include "render/render_list.h"
 #include "writers/annotators.h"
 #include "writers/semantics.h"
@@ -25,6 +26,8 @@ struct FrameScene {
   // run holds a frame's products back until `next` is known.
   std::shared_ptr<const RenderList> previous, next;
   bool nextKnown = false;
+  // capture.lidars' sweeps, in that order (when a writer asks for them).
+  std::vector<LidarSweep> lidars;
 };
 
 struct ProductFrame {

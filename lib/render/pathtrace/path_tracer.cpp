@@ -19,6 +19,7 @@
 #include "render/pathtrace/embree_scene.h"
 #include "render/pathtrace/pt_lights.h"
 #include "render/pathtrace/pt_materials.h"
+#include "render/pathtrace/pt_surfaces.h"
 #include "render/pathtrace/pt_textures.h"
 #include "render/pathtrace/sampler.h"
 
@@ -83,33 +84,15 @@ class CameraRays {
 }  // namespace
 
 struct PathTracer::Caches {
-  explicit Caches(const AssetResolver& assets) : textures(assets) {}
-  EmbreeScene scene;
-  PtTextureCache textures;
-  std::map<std::string, uint32_t> meshes;  // RenderItem::meshId -> EmbreeScene mesh
+  explicit Caches(const AssetResolver& assets) : geometry(assets) {}
+  PtGeometryCache geometry;
   std::map<std::string, std::unique_ptr<PtDomeMap>> domes;
 };
 
-// Everything one render() reads while its threads run: the instances'
-// materials and ids, the lights. Also the cut-out test Embree's filters
-// call.
-struct PtFrameData final : CutOutTest {
-  const EmbreeScene* scene = nullptr;
-  std::vector<uint32_t> materialOffset;  // per instance, into `materials`
-  std::vector<uint32_t> partCount;       // per instance
-  std::vector<uint32_t> instanceIds;     // per instance: RenderItem::instanceId
-  std::vector<SurfaceMaterial> materials;
-  bool anyCutOut = false;
+// Everything one render() reads while its threads run: the surfaces
+// (materials, ids, the cut-out test) and the lights.
+struct PtFrameData final : PtSurfaces {
   PtLights lights;
-
-  const SurfaceMaterial& material(uint32_t instance, uint32_t part) const {
-    return materials[materialOffset[instance] + std::min(part, partCount[instance] - 1)];
-  }
-  bool opaqueAt(uint32_t instance, uint32_t triangle, float u, float v) const override {
-    const SurfaceGeometry g = scene->geometry(SurfaceHit{instance, triangle, u, v, 0.0f});
-    return surfaceOpaque(material(instance, g.part), g);
-  }
-  const CutOutTest* cutOuts() const { return anyCutOut ? this : nullptr; }
 };
 
 PathTracer::PathTracer(const AssetResolver& assets, const PathTraceSettings& settings)
@@ -123,32 +106,8 @@ PathTracer::~PathTracer() = default;
 
 void PathTracer::prepare(const RenderList& list, PtFrameData& frame) {
   Caches& c = *caches_;
-  frame.scene = &c.scene;
-  std::vector<SceneInstance> instances(list.items.size());
-  for (size_t i = 0; i < list.items.size(); ++i) {
-    const RenderItem& item = list.items[i];
-    auto found = c.meshes.find(item.meshId);
-    if (found == c.meshes.end()) {
-      MeshData data = meshDataFor(item.mesh, assets_, item.primPath);
-      c.textures.addEmbedded(data.embeddedImages);
-      data.embeddedImages.clear();
-      found = c.meshes.emplace(item.meshId, c.scene.addMesh(std::move(data))).first;
-    }
-    const MeshData& mesh = c.scene.mesh(found->second);
-    frame.materialOffset.push_back(uint32_t(frame.materials.size()));
-    frame.instanceIds.push_back(item.instanceId);
-    bool cutOut = false;
-    const std::vector<MeshPart> defaultPart(mesh.parts.empty() ? 1 : 0);
-    for (const MeshPart& part : mesh.parts.empty() ? defaultPart : mesh.parts) {
-      frame.materials.push_back(resolveSurfaceMaterial(item, part, c.textures));
-      cutOut = cutOut || frame.materials.back().cutOut();
-    }
-    frame.partCount.push_back(uint32_t(frame.materials.size() - frame.materialOffset.back()));
-    instances[i] = SceneInstance{found->second, item.worldFromLocal, cutOut};
-    frame.anyCutOut = frame.anyCutOut || cutOut;
-  }
-  c.scene.setInstances(instances);
-  frame.lights.build(list, c.scene.bounds(), [&](const RenderLight& light) -> const PtDomeMap* {
+  preparePtSurfaces(list, assets_, c.geometry, frame);
+  frame.lights.build(list, c.geometry.scene.bounds(), [&](const RenderLight& light) -> const PtDomeMap* {
     auto it = c.domes.find(light.texture);
     if (it != c.domes.end()) return it->second.get();
     ImageRgbaF map = loadDomeMap(light.texture, assets_, light.path);

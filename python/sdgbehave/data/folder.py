@@ -20,7 +20,7 @@ class DatasetError(Exception):
 PARTS_FOLDER = ".sdgbehave"
 # <kind>_<frame digits>.<ext>, as the BasicWriter names every per-frame file (kinds and camera names
 # start with a letter or _, which keeps BOP's <im_id>_<gt_id>.png masks out).
-_FRAME_FILE = re.compile(r"^(?P<stem>[A-Za-z_].*)_(?P<digits>[0-9]+)\.(?P<ext>png|npy|json)$")
+_FRAME_FILE = re.compile(r"^(?P<stem>[A-Za-z_].*)_(?P<digits>[0-9]+)\.(?P<ext>png|npy|json|bin)$")
 
 
 def read_json(path, what):

@@ -14,12 +14,16 @@ BOX2D_DTYPE = np.dtype([("semanticId", "<u4"), ("x_min", "<i4"), ("y_min", "<i4"
 BOX3D_DTYPE = np.dtype([("semanticId", "<u4"), ("x_min", "<f4"), ("y_min", "<f4"), ("z_min", "<f4"),
                         ("x_max", "<f4"), ("y_max", "<f4"), ("z_max", "<f4"), ("transform", "<f4", (4, 4)),
                         ("occlusionRatio", "<f4")])
+# lidar_<sensor>_X.npy: one row per LiDAR point (docs/writers.md, "lidar").
+LIDAR_DTYPE = np.dtype([("x", "<f4"), ("y", "<f4"), ("z", "<f4"), ("range", "<f4"), ("intensity", "<f4"),
+                        ("ring", "<u2"), ("azimuth", "<f4"), ("time", "<f4"), ("semantic_id", "<u4"),
+                        ("instance_id", "<u4")])
 # The BasicWriter options; a file kind belongs to the longest one it starts with
 # ("instance_id_segmentation_mapping" to instance_id_segmentation), for the message when one is missing.
 _OPTIONS = ("rgb", "hdr_color", "bounding_box_2d_tight", "bounding_box_2d_loose", "bounding_box_3d",
             "semantic_segmentation", "instance_id_segmentation", "instance_segmentation", "distance_to_camera",
             "distance_to_image_plane", "occlusion", "normals", "camera_params", "pointcloud", "motion_vectors",
-            "forward_flow", "backward_flow")
+            "forward_flow", "backward_flow", "lidar")
 
 
 def _option_of(kind):
@@ -202,6 +206,42 @@ class Frame:
         for part in ("rgb", "normals", "semantic", "instance"):
             out[part] = self._npy("pointcloud_" + part)
         return out
+
+    # LiDAR ------------------------------------------------------------------
+    def lidar_sensors(self):
+        """Names of the Lidar prims with a sweep in this frame, sorted (sweeps belong to the first
+        camera's frames)."""
+        return sorted(k[len("lidar_"):] for k, exts in self.files.items() if k.startswith("lidar_") and "npy" in exts)
+
+    def _lidar_kind(self, sensor):
+        if sensor is None:
+            sensors = self.lidar_sensors()
+            if not sensors:
+                raise MissingAnnotation(f"{self.root}: frame {self.number} of {self.camera} has no LiDAR sweep; "
+                                        f"the scene's writer did not enable it (writer.lidar: true), or the "
+                                        f"sweeps are in the first camera's frames")
+            sensor = sensors[0]
+        return "lidar_" + sensor
+
+    def lidar(self, sensor=None):
+        """(N,) structured array of LIDAR_DTYPE: x, y, z (sensor frame, metres), range, intensity,
+        ring, azimuth (degrees), time (seconds in the sweep), semantic_id, instance_id. `sensor`
+        names the Lidar prim; the default is the first of lidar_sensors()."""
+        points = self._npy(self._lidar_kind(sensor))
+        return points.astype(LIDAR_DTYPE, copy=False)
+
+    def lidar_info(self, sensor=None):
+        """The sweep's JSON: "world_from_sensor" as a (4, 4) float64 array (scene units), "pattern",
+        "semantic_labels" {id: {taxonomy: label}}, "instance_paths" {id: prim path}, ids as ints."""
+        info = self._json(self._lidar_kind(sensor))
+        info["world_from_sensor"] = np.array(info["world_from_sensor"], dtype=np.float64)
+        info["semantic_labels"] = {int(k): v for k, v in info["semantic_labels"].items()}
+        info["instance_paths"] = {int(k): v for k, v in info["instance_paths"].items()}
+        return info
+
+    def lidar_kitti(self, sensor=None):
+        """(N, 4) float32 x, y, z, intensity from KITTI's .bin (writer.lidar_kitti: true)."""
+        return np.fromfile(self.path(self._lidar_kind(sensor), "bin"), dtype="<f4").reshape(-1, 4)
 
     # Anything else ----------------------------------------------------------
     def load(self, kind, ext=None):

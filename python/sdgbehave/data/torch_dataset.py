@@ -20,18 +20,21 @@ class TorchDataset(torch.utils.data.Dataset):
     "masks": uint8 (N, H, W) each box's instance mask (when the dataset has
     instance_segmentation; `masks=False` leaves them out); "semantic": int64 (H, W) class index
     per pixel, 0 background and unlabelled (when it has semantic_segmentation; `semantic=False`
-    leaves it out); "image_id": int64 the run's frame number; "camera": the render product}.
+    leaves it out); "image_id": int64 the run's frame number; "camera": the render product;
+    with `lidar=True`, "lidar": {sensor: {"points": float32 (N, 3) sensor frame, "intensity":
+    float32 (N,), "labels": int64 (N,) class indices as above, "instance": int64 (N,) instance ids}}
+    for the frame's LiDAR sweeps (empty for frames without)}.
 
     `classes` fixes the class list (names of `taxonomy`, default the dataset's sorted labels);
     entities whose label is not in it are dropped. `transforms(image, target)` runs last.
     Other arguments are Dataset's (`verify`, `camera`)."""
 
     def __init__(self, root, boxes="tight", masks=True, semantic=True, classes=None, taxonomy="class",
-                 transforms=None, verify=True, camera=None):
+                 transforms=None, verify=True, camera=None, lidar=False):
         if boxes not in ("tight", "loose"):
             raise ValueError(f"boxes: expected 'tight' or 'loose', found {boxes!r}")
         self.dataset = Dataset(root, verify=verify, camera=camera)
-        self.boxes, self.masks, self.semantic = boxes, masks, semantic
+        self.boxes, self.masks, self.semantic, self.lidar = boxes, masks, semantic, lidar
         self.taxonomy, self.transforms = taxonomy, transforms
         self.classes = list(classes) if classes is not None else self.dataset.classes(taxonomy)
         # 0 is the background, as torchvision's detection models expect.
@@ -75,9 +78,22 @@ class TorchDataset(torch.utils.data.Dataset):
             present, inverse = np.unique(semantic.ids, return_inverse=True)
             classes = np.array([lookup.get(int(i), 0) for i in present], dtype=np.int64)
             target["semantic"] = torch.from_numpy(classes[inverse].reshape(semantic.ids.shape))
+        if self.lidar:
+            target["lidar"] = {sensor: self._lidar_target(frame, sensor) for sensor in frame.lidar_sensors()}
         if self.transforms is not None:
             image, target = self.transforms(image, target)
         return image, target
+
+
+    def _lidar_target(self, frame, sensor):
+        points = frame.lidar(sensor)
+        labels = frame.lidar_info(sensor)["semantic_labels"]
+        lookup = {ident: self._class_index(names) for ident, names in labels.items()}
+        classes = np.array([lookup.get(int(i), 0) for i in points["semantic_id"]], dtype=np.int64)
+        xyz = np.stack([points["x"], points["y"], points["z"]], axis=1).astype(np.float32)
+        return {"points": torch.from_numpy(xyz), "intensity": torch.from_numpy(points["intensity"].copy()),
+                "labels": torch.from_numpy(classes),
+                "instance": torch.from_numpy(points["instance_id"].astype(np.int64))}
 
 
 def collate(batch):
