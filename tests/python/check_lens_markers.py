@@ -5,7 +5,9 @@ tangential and thin-prism distortion and through an OpenCV-fisheye camera
 with a 190 degree field of view land where cv2.projectPoints /
 cv2.fisheye.projectPoints put their centres, within 0.5 px:
 - in the rasterizer's instance ids (the centroid of each marker's pixels),
-  whose distance_to_camera at the marker is its distance less its radius;
+  whose distance_to_camera at the marker is its distance less its radius,
+  and whose loose boxes (coverage masks through the lens) equal the tight
+  ones with no occlusion;
 - in the CPU path tracer's colour (the brightness-weighted centroid around
   each marker; the markers are lit by a point light at the eye, so the lit
   side faces the camera symmetrically).
@@ -62,7 +64,8 @@ def scene_text(model, params, markers):
     lines = ["version: 1", f"render: {{resolution: [{WIDTH}, {HEIGHT}], samples: 4, max_bounces: 1}}",
              "capture: {cameras: [/World/Camera], frames: 1, seed: 1, contact_sheet: false}",
              "writer: {type: BasicWriter, rgb: true, instance_id_segmentation: true,"
-             " colorize_instance_id_segmentation: false, distance_to_camera: true, camera_params: true}",
+             " colorize_instance_id_segmentation: false, distance_to_camera: true, camera_params: true,"
+             " bounding_box_2d_tight: true, bounding_box_2d_loose: true, occlusion: true}",
              "prims:", "  /World: {}",
              "  /World/Lamp: {type: SphereLight, treatAsPoint: true, inputs:intensity: 30000}",
              "  /World/Camera:", "    type: Camera", "    clippingRange: [0.1, 100]",
@@ -73,7 +76,7 @@ def scene_text(model, params, markers):
         p = d * distance
         radius = distance * math.sin(ANGULAR[model])
         lines.append(f"  /World/Marker{i}: {{type: Sphere, radius: {radius:.6f}, translate: [{p[0]:.6f}, {p[1]:.6f}, {p[2]:.6f}],"
-                     " primvars:displayColor: [1, 1, 1]}")
+                     f" primvars:displayColor: [1, 1, 1], semantics: {{class: marker{i}}}}}")
     return "\n".join(lines) + "\n"
 
 
@@ -133,6 +136,19 @@ def check_ids(name, out, markers, expected):
               f"{name}: distance_to_camera at {path} is {near:.4f}, expected about {front:.4f}")
 
 
+def check_boxes(name, out):
+    """Nothing hides a marker, so the loose boxes (from each entity's own
+    coverage mask, resampled through the lens like the ids) equal the tight
+    ones (from the ids), and every occlusion ratio is 0."""
+    tight = np.load(f"{out}/bounding_box_2d_tight_0000.npy")
+    loose = np.load(f"{out}/bounding_box_2d_loose_0000.npy")
+    corners = ["semanticId", "x_min", "y_min", "x_max", "y_max"]
+    check(len(tight) == len(loose) and all((tight[c] == loose[c]).all() for c in corners),
+          f"{name}: loose boxes {loose[corners].tolist()} differ from tight ones {tight[corners].tolist()}")
+    occlusion = np.load(f"{out}/occlusion_0000.npy")
+    check((occlusion["occlusionRatio"] == 0).all(), f"{name}: occlusion {occlusion.tolist()}")
+
+
 def check_colour(name, out, expected):
     rgb = np.asarray(Image.open(f"{out}/rgb_0000.png"))[..., :3].astype(np.float64)
     luminance = rgb @ np.array([0.2126, 0.7152, 0.0722])
@@ -162,6 +178,7 @@ def main():
                 f.write(scene_text(name, params, markers))
             if run(binary, scene, f"{tmp}/{name}-raster"):
                 check_ids(name, f"{tmp}/{name}-raster", markers, expected)
+                check_boxes(name, f"{tmp}/{name}-raster")
                 cam = json.load(open(f"{tmp}/{name}-raster/camera_params_0000.json"))
                 check(cam["cameraModel"] == name and cam["cameraLensDistortion"]["fx"] == params["fx"],
                       f"{name}: camera_params names the model and its coefficients: {cam.get('cameraLensDistortion')}")

@@ -125,6 +125,8 @@ class Renderer {
   // A camera with a calibrated lens (render/lens_views.h): its pinhole
   // views drawn and read back one after another, then resampled into `out`.
   void renderLens(const RenderList& list, const RenderCamera& camera, FramePasses& out, const PassSelection& passes);
+  void drawMaskLayers(const RenderList& list, const RenderCamera& camera, const std::vector<std::vector<size_t>>& groups,
+                      unsigned buffer, uint32_t* cpu);
   // One attachment's pixels (bottom row first, as GL gives them) into `out`.
   void unpack(int attachment, const void* pixels, FramePasses& out);
   struct ReadSlot {
@@ -137,6 +139,9 @@ class Renderer {
     size_t maskBufferBytes = 0;
     size_t maskGroups = 0;
     bool masksPending = false;
+    // A lens camera's masks, resampled from its views when queued.
+    std::vector<uint32_t> lensMasks;
+    bool lensMasksReady = false;
   };
   ReadSlot readSlots_[2];
 
@@ -199,6 +204,7 @@ class Renderer {
   // Lens cameras' view plans by camera path, and their views' passes.
   std::map<std::string, LensViewPlan> lensPlans_;
   std::vector<FramePasses> lensViews_;
+  std::vector<uint32_t> lensMaskView_;  // one view's coverage masks
   std::vector<uint32_t> colorSum_;
   std::vector<uint8_t> scratchRgba_;
   std::vector<float> scratchFloat_;
