@@ -49,6 +49,10 @@ struct ColorRendererInputs {
   // from the first call on (made on demand where the caller has none yet).
   // Unset where no GL context may be made.
   std::function<GlContext&()> glContext;
+  // Some camera has a calibrated lens (RenderCamera::lens), which the GPU
+  // path tracer does not follow yet: render.pathtracer auto then traces on
+  // the CPU, and gpu is refused.
+  bool calibratedLens = false;
 };
 
 // Thrown by a factory whose renderer cannot run on this machine; the text

@@ -153,6 +153,38 @@ RenderLight lightOf(const Stage& stage, const Prim& prim) {
   return l;
 }
 
+// The camera's calibrated lens from its omni:lensdistortion:* attributes
+// (validated by the scene loader: positive focal lengths and sizes).
+LensModel lensOf(const Prim& prim) {
+  LensModel lens;
+  const std::string& token = prim.getString("omni:lensdistortion:model");
+  lens.kind = lensModelFromToken(token).value_or(LensModelKind::Pinhole);
+  if (!lens.calibrated()) return lens;
+  const std::string p = "omni:lensdistortion:" + token + ":";
+  auto number = [&](const std::string& name) { return double(prim.getFloat(p + name)); };
+  if (lens.kind == LensModelKind::OpenCvPinhole || lens.kind == LensModelKind::OpenCvFisheye) {
+    const Vec2i size = prim.value(p + "imageSize")->get<Vec2i>();
+    lens.calibratedSize = Eigen::Vector2d(double(size.x()), double(size.y()));
+    lens.fx = number("fx"), lens.fy = number("fy"), lens.cx = number("cx"), lens.cy = number("cy");
+    const int radial = lens.kind == LensModelKind::OpenCvPinhole ? 6 : 4;
+    for (int i = 0; i < radial; ++i) lens.k[i] = number("k" + std::to_string(i + 1));
+    if (lens.kind == LensModelKind::OpenCvPinhole) {
+      lens.p1 = number("p1"), lens.p2 = number("p2");
+      for (int i = 0; i < 4; ++i) lens.s[i] = number("s" + std::to_string(i + 1));
+    }
+    lens.prepare();
+    return lens;
+  }
+  lens.calibratedSize = Eigen::Vector2d(number("nominalWidth"), number("nominalHeight"));
+  const Vec2f centre = prim.value(p + "opticalCenter")->get<Vec2f>();
+  lens.cx = centre.x(), lens.cy = centre.y();
+  lens.maxFovDegrees = number("maxFov");
+  const int terms = lens.kind == LensModelKind::FTheta ? 5 : 4;
+  for (int i = 0; i < terms; ++i) lens.k[i] = number("k" + std::to_string(i));
+  lens.prepare();
+  return lens;
+}
+
 RenderCamera cameraOf(const Stage& stage, const Prim& prim) {
   RenderCamera c;
   c.path = prim.path();
@@ -169,10 +201,17 @@ RenderCamera cameraOf(const Stage& stage, const Prim& prim) {
   c.orthographic = prim.getString("projection") == "orthographic";
   c.focusDistance = prim.getFloat("focusDistance");
   c.fStop = prim.getFloat("fStop");
+  c.lens = lensOf(prim);
   return c;
 }
 
 }  // namespace
+
+bool anyCalibratedLens(const RenderList& list) {
+  for (const RenderCamera& c : list.cameras)
+    if (c.lens.calibrated()) return true;
+  return false;
+}
 
 RenderList buildRenderList(const Stage& stage) {
   RenderList list;

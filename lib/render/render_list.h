@@ -9,6 +9,7 @@
 
 #include "assets/mesh_data.h"
 #include "assets/mesh_source.h"
+#include "render/lens_model.h"
 #include "stage/stage.h"
 
 namespace sdg {
@@ -26,6 +27,9 @@ struct RenderCamera {
   bool orthographic = false;
   float focusDistance = 0.0f;
   float fStop = 0.0f;
+  // A calibrated lens (omni:lensdistortion:*): when set, it replaces
+  // focalLength and the apertures for projection.
+  LensModel lens;
 };
 
 
@@ -99,6 +103,8 @@ struct RenderList {
 };
 
 RenderList buildRenderList(const Stage& stage);
+// Whether a camera of the list has a calibrated lens.
+bool anyCalibratedLens(const RenderList& list);
 // The material bound to a prim: the closest binding above it, unless an
 // ancestor binds strongerThanDescendants (then the highest such one wins).
 const Prim* boundMaterial(const Stage& stage, const Prim& prim);

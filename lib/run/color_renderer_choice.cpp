@@ -26,6 +26,10 @@ std::unique_ptr<ColorRenderer> makeGpuTracer(const ColorRendererInputs&) { retur
 const char* const kNoGpuTracer =
     "render.pathtracer: gpu, but this build of sdgbehave has no GPU path tracer; use render.pathtracer: cpu (or auto)";
 
+const char* const kGpuTracerNoLens =
+    "render.pathtracer: gpu, but a camera has a calibrated lens (omni:lensdistortion:model), which the GPU path "
+    "tracer does not follow yet; use render.pathtracer: cpu (or auto)";
+
 bool gpuPathTracerBuiltIn() { return kGpuTracerBuiltIn; }
 
 std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inputs, const SourceLoc& setting) {
@@ -36,13 +40,14 @@ std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inpu
       return makeCpuTracerColor(inputs);
     case PathTracerChoice::Gpu:
       if (!kGpuTracerBuiltIn) throw SceneError(setting, kNoGpuTracer);
+      if (inputs.calibratedLens) throw SceneError(setting, kGpuTracerNoLens);
       try {
         return makeGpuTracer(inputs);
       } catch (const RendererUnavailable& e) {
         throw RunError(std::string("render.pathtracer: gpu: the GPU path tracer cannot run here: ") + e.what());
       }
     case PathTracerChoice::Auto:
-      if (kGpuTracerBuiltIn) {
+      if (kGpuTracerBuiltIn && !inputs.calibratedLens) {
         try {
           return makeGpuTracer(inputs);
         } catch (const RendererUnavailable& e) {

@@ -18,6 +18,8 @@ std::unique_ptr<ColorRenderer> makeColorRenderer(const ColorRendererInputs& inpu
 
 // The error for render.pathtracer: gpu in a build without a GPU tracer.
 extern const char* const kNoGpuTracer;
+// The same for render.pathtracer: gpu with a camera that has a calibrated lens.
+extern const char* const kGpuTracerNoLens;
 
 // Whether this build has a GPU path tracer (render.pathtracer: gpu).
 bool gpuPathTracerBuiltIn();

@@ -312,7 +312,7 @@ void DatasetRun::prepare() {
   // to make it (render.pathtracer: gpu where it cannot run) is reported
   // when the first frame needs it.
   ColorRendererInputs inputs{loaded_.assets, settings_, int(threads_),
-                             [&bringUp]() -> GlContext& { return bringUp.context(); }};
+                             [&bringUp]() -> GlContext& { return bringUp.context(); }, anyCalibratedLens(initialList)};
   colorMaking_ = std::async(std::launch::async, [inputs, setting = tracerAt ? *tracerAt : sceneLoc_] {
     return makeColorRenderer(inputs, setting);
   });

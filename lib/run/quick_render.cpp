@@ -121,7 +121,8 @@ Picture PictureRenderer::render(const LoadedScene& loaded, const Stage& stage, c
        [this, &loaded]() -> GlContext& {
          if (!context_) context_ = glContextFor(loaded.scene, overrides_);
          return *context_;
-       }},
+       },
+       anyCalibratedLens(list)},
       tracerAt ? *tracerAt : SourceLoc{loaded.scene.sourcePath, 0, 0});
   if (color->replacesRasterColor()) {
     // A traced picture alone: no rasterizer is made for it.

@@ -1,5 +1,7 @@
 #include "scene_io/scene_validate.h"
 
+#include <cmath>
+
 #include "assets/inline_mesh.h"
 #include "core/text.h"
 #include "stage/lidar_pattern.h"
@@ -45,8 +47,49 @@ void validateCapturedPrims(const Scene& scene, const char* key, PrimType type, D
   }
 }
 
+// A calibrated lens: only the selected model's parameters are used, and
+// each must be a finite number; focal lengths, sizes and the field of view
+// positive, and the f-theta / K-B polynomials increasing at the centre.
+void validateLens(const Prim& prim, Diagnostics& diag) {
+  const std::string& model = prim.getString("omni:lensdistortion:model");
+  if (model.empty()) return;
+  const std::string p = "omni:lensdistortion:" + model + ":";
+  auto fail = [&](const std::string& name, const std::string& expected, const std::string& found) {
+    diag.error(attributeLoc(prim, p + name), prim.path() + "." + p + name + ": expected " + expected + ", found " + found);
+  };
+  for (const AttributeSpec& spec : prim.typeInfo().attributes) {
+    if (!spec.name.starts_with(p) || spec.type != ValueType::Float) continue;
+    const float v = prim.getFloat(spec.name);
+    if (!std::isfinite(v)) fail(spec.name.substr(p.size()), "a finite number", text::formatFloat(v));
+  }
+  auto positive = [&](const std::string& name, const std::string& what) {
+    const float v = prim.getFloat(p + name);
+    if (std::isfinite(v) && !(v > 0.0f)) fail(name, what + " greater than 0", text::formatFloat(v));
+  };
+  if (model == "opencvPinhole" || model == "opencvFisheye") {
+    positive("fx", "a focal length");
+    positive("fy", "a focal length");
+    const Vec2i size = prim.value(p + "imageSize")->get<Vec2i>();
+    if (size.minCoeff() <= 0)
+      fail("imageSize", "a width and height greater than 0",
+           std::to_string(size.x()) + " x " + std::to_string(size.y()));
+  } else {
+    positive("nominalWidth", "a width");
+    positive("nominalHeight", "a height");
+    positive("maxFov", "a field of view (degrees)");
+    // The centre's slope: angle per pixel (ftheta k1), pixels per radian (K-B k0).
+    positive(model == "ftheta" ? "k1" : "k0", model == "ftheta" ? "radians per pixel" : "pixels per radian");
+  }
+  if (prim.getString("projection") == "orthographic")
+    diag.error(attributeLoc(prim, "omni:lensdistortion:model"),
+               prim.path() + ".omni:lensdistortion:model: a calibrated lens needs projection = perspective, found orthographic");
+}
+
 void validatePrim(const Stage& stage, const Prim& prim, const BehaviorCatalog& catalog, Diagnostics& diag) {
-  if (prim.type() == PrimType::Camera) validateCamera(prim, diag);
+  if (prim.type() == PrimType::Camera) {
+    validateCamera(prim, diag);
+    validateLens(prim, diag);
+  }
   if (prim.type() == PrimType::Lidar) validateLidar(prim, diag);
   if (prim.type() == PrimType::Mesh && prim.getString("asset").empty()) {
     if (auto mesh = inlineMeshOf(prim, stage.metadata().subdivisionLevel)) {

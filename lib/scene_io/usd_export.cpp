@@ -5,6 +5,7 @@
 #include <set>
 
 #include "assets/mesh_source.h"
+#include "scene_io/usd_lens_schemas.h"
 #include "scene_io/usd_prim_labels.h"
 #include "stage/behavior_spec.h"
 #include "stage/value_json.h"
@@ -296,6 +297,7 @@ class Exporter {
       fallbacks_.push_back("subdivisionScheme");
     if (!fallbacks_.empty()) customData[kFallbacksKey] = usd::Value::textArray(Kind::Token, fallbacks_);
     if (!customData.empty()) spec.fields[field::kCustomData] = usd::Value::dict(std::move(customData));
+    if (prim.type() == PrimType::Camera) writeLensSchema(prim, apiSchemas);
     writeSemantics(prim, apiSchemas);
     writeBehaviors(prim);
     prependApiSchemas(spec, apiSchemas);
@@ -506,6 +508,14 @@ class Exporter {
 
   // Isaac's Semantics schema, one instance per label, and UsdSemantics'
   // LabelsAPI per taxonomy; sdgbehave's import reads both and merges them.
+  // A calibrated lens applies its omni_lens_distortion schema, as Isaac
+  // Sim authors it (the attributes themselves are written with the others).
+  static void writeLensSchema(const Prim& prim, std::vector<std::string>& apiSchemas) {
+    const std::string& model = prim.getString("omni:lensdistortion:model");
+    for (const UsdLensSchema& lens : kUsdLensSchemas)
+      if (model == lens.model) apiSchemas.emplace_back(lens.schema);
+  }
+
   void writeSemantics(const Prim& prim, std::vector<std::string>& apiSchemas) {
     size_t n = 0;
     for (const auto& [taxonomy, labels] : prim.semantics())

@@ -15,6 +15,7 @@
 #include "scene_io/usd_export.h"
 #include "scene_io/usd_default_view.h"
 #include "scene_io/usd_import_internal.h"
+#include "scene_io/usd_lens_schemas.h"
 #include "scene_io/usd_mesh_asset.h"
 #include "scene_io/usd_mesh_topology.h"
 #include "scene_io/usd_point_instancer.h"
@@ -218,6 +219,7 @@ class Importer {
     }
     if (type == PrimType::Material) return scale;
     importAttributes(prim, p, type, scale, knownType);
+    if (type == PrimType::Camera) importLensSchema(prim, p);
     if (type == PrimType::Mesh && !importMeshAsset(prim, p)) importMesh(prim, p);
     return scale;
   }
@@ -242,6 +244,19 @@ class Importer {
     std::set<std::string> said;
     for (const Diagnostic& d : sampleDiag.all())
       if (d.severity == Severity::Error && said.insert(d.format()).second) diag_.error(d.loc, "at a time sample: " + d.message);
+  }
+
+  // A camera that applies one of the omni_lens_distortion schemas without
+  // authoring the model token gets the schema's model, as in Isaac Sim.
+  void importLensSchema(const ComposedPrim& prim, Prim& p) {
+    static const std::string kModel = "omni:lensdistortion:model";
+    if (p.findAttribute(kModel)) return;
+    for (const std::string& schema : prim.apiSchemas)
+      for (const UsdLensSchema& lens : kUsdLensSchemas)
+        if (schema == lens.schema) {
+          p.setAttribute(kModel, Value::makeToken(std::string(lens.model))).loc = prim.loc;
+          return;
+        }
   }
 
   // `knownType` false: the prim's type is already reported as dropped, and
@@ -274,6 +289,12 @@ class Importer {
       if (!v) {
         diag_.error(prop.loc, prim.path + "." + prop.name + ": expected " + std::string(valueTypeShape(spec->type)) +
                                   " (" + std::string(valueTypeName(spec->type)) + "), found " + prop.typeName);
+        continue;
+      }
+      if (type == PrimType::Camera && spec->name == "omni:lensdistortion:model" &&
+          v->get<std::string>() == kUnreadLensModel) {
+        report_.losses.note(UsdLossKind::Attribute, prop.name + " = " + std::string(kUnreadLensModel), prop.loc,
+                            prim.path);
         continue;
       }
       if (type == PrimType::Camera && spec->name == "clippingRange") {

@@ -83,9 +83,10 @@ bool appliedSchemaChangesAppearance(const std::string& schema, bool onLight) {
   // Schemas that change the look and that nothing here reads; every other
   // schema is either read (MaterialBindingAPI, SemanticsAPI, SkelBindingAPI, ...) or has no
   // visible effect (physics, collections, tools' own tags).
-  static constexpr std::array<std::string_view, 8> kVisible = {
-      "ShapingAPI", "ShadowAPI", "LightListAPI", "MotionAPI",
-      "VisibilityAPI", "GeomModelAPI", "OmniLensDistortion", "VolumeLightAPI"};
+  // The lens schemas of usd_lens_schemas.h are read; the family's others are not.
+  static constexpr std::array<std::string_view, 10> kVisible = {
+      "ShapingAPI", "ShadowAPI", "LightListAPI", "MotionAPI", "VisibilityAPI", "GeomModelAPI", "VolumeLightAPI",
+      "OmniLensDistortionRadTanThinPrismAPI", "OmniLensDistortionLutAPI", "OmniLensDistortionOmniDirectionalStereoAPI"};
   const std::string_view name = std::string_view(schema).substr(0, schema.find(':'));  // multiple-apply: "X:instance"
   // A light's own LightAPI is what makes it a light; on geometry it makes a mesh light.
   if (name == "LightAPI" || name == "MeshLightAPI") return !onLight;

@@ -74,6 +74,54 @@ const std::vector<AttributeSpec>& light() {
 
 std::vector<AttributeSpec> lightWith(std::vector<AttributeSpec> extra) { return concat(light(), extra); }
 
+// The camera's calibrated lens: the attributes of NVIDIA's omni_lens_distortion
+// API schemas (docs/scene-format.md, "Lens models"), under the same names.
+// Defaults are NVIDIA's where its schema reference shows them (f-theta, the
+// K-B nominal size); the others are marked as not checked in the docs.
+std::vector<AttributeSpec> lensDistortion() {
+  const std::string p = "omni:lensdistortion:";
+  std::vector<AttributeSpec> s = {tokenAttr(
+      p + "model", "", {"", "opencvPinhole", "opencvFisheye", "ftheta", "kannalaBrandtK3"},
+      "Calibrated lens model; its parameters then replace focalLength and the apertures for projection. Empty: "
+      "the ideal pinhole of focalLength and the apertures.")};
+  auto number = [&](const std::string& name, float fallback, const std::string& doc) {
+    s.push_back(attr(p + name, Value::makeFloat(fallback), doc));
+  };
+  for (const std::string model : {"opencvPinhole", "opencvFisheye"}) {
+    const std::string m = model + ":";
+    number(m + "fx", 900.0f, "Focal length along x (pixels of imageSize).");
+    number(m + "fy", 800.0f, "Focal length along y (pixels of imageSize).");
+    number(m + "cx", 1024.0f, "Principal point x (pixels of imageSize, pixel centres at integers).");
+    number(m + "cy", 512.0f, "Principal point y (pixels of imageSize, y down).");
+    s.push_back(attr(p + m + "imageSize", Value::makeInt2(2048, 1024),
+                     "Width and height of the calibrated image; another render resolution scales the intrinsics."));
+    const int radial = model == "opencvPinhole" ? 6 : 4;
+    for (int i = 1; i <= radial; ++i)
+      number(m + "k" + std::to_string(i), 0.0f,
+             radial == 6 ? "Radial coefficient (k1-k3 numerator, k4-k6 denominator, as OpenCV)."
+                         : "Coefficient of theta^" + std::to_string(2 * i + 1) + " (OpenCV fisheye).");
+  }
+  for (const char* t : {"p1", "p2"}) number(std::string("opencvPinhole:") + t, 0.0f, "Tangential coefficient (OpenCV).");
+  for (int i = 1; i <= 4; ++i)
+    number("opencvPinhole:s" + std::to_string(i), 0.0f, "Thin-prism coefficient (OpenCV).");
+  for (const std::string model : {"ftheta", "kannalaBrandtK3"}) {
+    const std::string m = model + ":";
+    number(m + "nominalWidth", 1936.0f, "Width of the calibrated sensor (pixels).");
+    number(m + "nominalHeight", 1216.0f, "Height of the calibrated sensor (pixels).");
+    s.push_back(attr(p + m + "opticalCenter", Value::makeFloat2(970.9424f, 600.3748f),
+                     "Optical centre (pixels of the nominal size, y down)."));
+    number(m + "maxFov", 200.0f, "Full field of view (degrees); directions beyond half of it are not imaged.");
+  }
+  const float fthetaK[] = {0.0f, 0.00245f, 0.0f, 0.0f, 0.0f};
+  for (int i = 0; i <= 4; ++i)
+    number("ftheta:k" + std::to_string(i), fthetaK[i],
+           "Coefficient of r^" + std::to_string(i) + " in angle(r) (radians, r the distance to the optical centre in pixels).");
+  for (int i = 0; i <= 3; ++i)
+    number("kannalaBrandtK3:k" + std::to_string(i), 0.0f,
+           "Coefficient of theta^" + std::to_string(2 * i + 1) + " in radius(theta) (pixels).");
+  return s;
+}
+
 std::vector<PrimTypeInfo> buildTable() {
   std::vector<PrimTypeInfo> t;
   t.push_back({PrimType::Xform, "Xform", true, false, false,
@@ -140,7 +188,7 @@ std::vector<PrimTypeInfo> buildTable() {
                                 attr("doubleSided", Value::makeBool(true), "Render back faces too.")})});
   t.push_back({PrimType::Camera, "Camera", true, false, false,
                "A camera looking down its local -Z axis with +Y up.",
-               concat(imageable(),
+               concat(concat(imageable(),
                       {positive(attr("focalLength", Value::makeFloat(50.0f), "Focal length (tenths of a scene unit, usually mm).")),
                        positive(attr("horizontalAperture", Value::makeFloat(20.955f), "Horizontal film aperture (same unit as focalLength).")),
                        positive(attr("verticalAperture", Value::makeFloat(15.2908f), "Vertical film aperture.")),
@@ -149,7 +197,8 @@ std::vector<PrimTypeInfo> buildTable() {
                        positive(attr("clippingRange", Value::makeFloat2(1.0f, 1000000.0f), "Near and far clipping distances (scene units).")),
                        tokenAttr("projection", "perspective", {"perspective", "orthographic"}, "Projection model."),
                        positive(attr("focusDistance", Value::makeFloat(0.0f), "Distance to the focus plane (metadata only).")),
-                       positive(attr("fStop", Value::makeFloat(0.0f), "Lens aperture; 0 disables depth of field (metadata only)."))})});
+                       positive(attr("fStop", Value::makeFloat(0.0f), "Lens aperture; 0 disables depth of field (metadata only)."))}),
+                      lensDistortion())});
   t.push_back({PrimType::Lidar, "Lidar", true, false, false,
                "A LiDAR sensor: a spinning (or solid-state) pattern of rays cast from the prim's origin, x forward, "
                "y left, z up (its spin axis); one sweep per captured frame (capture.lidars).",

@@ -106,6 +106,34 @@ namespace {
 // Camera attributes are 32-bit floats: write their shortest decimal form
 // (24.0, 20.955), not the float's exact binary expansion.
 double decimal(float f) { return std::strtod(text::formatFloat(f).c_str(), nullptr); }
+// The lens holds its float attributes as doubles: their shortest form again.
+double decimal(double d) { return decimal(float(d)); }
+
+// A calibrated lens's parameters under the names of its omni:lensdistortion
+// attributes (without the prefix), for `cameraLensDistortion`.
+nlohmann::ordered_json lensParameters(const LensModel& lens) {
+  using Json = nlohmann::ordered_json;
+  Json j;
+  j["model"] = std::string(lensModelToken(lens.kind));
+  auto coefficients = [&](const char* letter, int first, int count, const double* values) {
+    for (int i = 0; i < count; ++i) j[letter + std::to_string(first + i)] = decimal(values[i]);
+  };
+  if (lens.kind == LensModelKind::OpenCvPinhole || lens.kind == LensModelKind::OpenCvFisheye) {
+    j["fx"] = decimal(lens.fx), j["fy"] = decimal(lens.fy), j["cx"] = decimal(lens.cx), j["cy"] = decimal(lens.cy);
+    j["imageSize"] = Json::array({int(lens.calibratedSize.x()), int(lens.calibratedSize.y())});
+    coefficients("k", 1, lens.kind == LensModelKind::OpenCvPinhole ? 6 : 4, lens.k.data());
+    if (lens.kind == LensModelKind::OpenCvPinhole) {
+      j["p1"] = decimal(lens.p1), j["p2"] = decimal(lens.p2);
+      coefficients("s", 1, 4, lens.s.data());
+    }
+  } else {
+    j["nominalWidth"] = decimal(lens.calibratedSize.x()), j["nominalHeight"] = decimal(lens.calibratedSize.y());
+    j["opticalCenter"] = Json::array({decimal(lens.cx), decimal(lens.cy)});
+    j["maxFov"] = decimal(lens.maxFovDegrees);
+    coefficients("k", 0, lens.kind == LensModelKind::FTheta ? 5 : 4, lens.k.data());
+  }
+  return j;
+}
 }  // namespace
 
 nlohmann::ordered_json cameraParams(const RenderCamera& camera, int width, int height, double metersPerUnit) {
@@ -130,17 +158,30 @@ nlohmann::ordered_json cameraParams(const RenderCamera& camera, int width, int h
   Json j;
   j["cameraAperture"] = Json::array({decimal(camera.horizontalAperture), decimal(camera.horizontalAperture) / aspect});
   j["cameraApertureOffset"] = Json::array({decimal(camera.horizontalApertureOffset), decimal(camera.verticalApertureOffset)});
-  j["cameraFisheyeLensP"] = Json::array();
-  j["cameraFisheyeLensS"] = Json::array();
-  j["cameraFisheyeMaxFOV"] = 0.0;
-  j["cameraFisheyeNominalHeight"] = 0;
-  j["cameraFisheyeNominalWidth"] = 0;
-  j["cameraFisheyeOpticalCentre"] = Json::array({0.0, 0.0});
-  j["cameraFisheyePolynomial"] = Json::array({0.0, 0.0, 0.0, 0.0, 0.0});
+  // Isaac's fisheye keys: f-theta and Kannala-Brandt fill the nominal size,
+  // optical centre, field of view and polynomial; opencvPinhole the
+  // tangential (LensP) and thin-prism (LensS) terms. Every model's full
+  // calibration is in cameraLensDistortion (docs/writers.md).
+  const LensModel& lens = camera.lens;
+  const bool polynomial = lens.kind == LensModelKind::FTheta || lens.kind == LensModelKind::KannalaBrandtK3;
+  j["cameraFisheyeLensP"] = lens.kind == LensModelKind::OpenCvPinhole ? Json::array({decimal(lens.p1), decimal(lens.p2)}) : Json::array();
+  j["cameraFisheyeLensS"] = lens.kind == LensModelKind::OpenCvPinhole
+                                ? Json::array({decimal(lens.s[0]), decimal(lens.s[1]), decimal(lens.s[2]), decimal(lens.s[3])})
+                                : Json::array();
+  j["cameraFisheyeMaxFOV"] = polynomial ? decimal(lens.maxFovDegrees) : 0.0;
+  j["cameraFisheyeNominalHeight"] = polynomial ? int(lens.calibratedSize.y()) : 0;
+  j["cameraFisheyeNominalWidth"] = polynomial ? int(lens.calibratedSize.x()) : 0;
+  j["cameraFisheyeOpticalCentre"] = polynomial ? Json::array({decimal(lens.cx), decimal(lens.cy)}) : Json::array({0.0, 0.0});
+  j["cameraFisheyePolynomial"] =
+      polynomial ? Json::array({decimal(lens.k[0]), decimal(lens.k[1]), decimal(lens.k[2]), decimal(lens.k[3]),
+                                decimal(lens.kind == LensModelKind::FTheta ? lens.k[4] : 0.0)})
+                 : Json::array({0.0, 0.0, 0.0, 0.0, 0.0});
   j["cameraFocalLength"] = decimal(camera.focalLength);
   j["cameraFocusDistance"] = decimal(camera.focusDistance);
   j["cameraFStop"] = decimal(camera.fStop);
-  j["cameraModel"] = camera.orthographic ? "orthographic" : "pinhole";
+  if (lens.calibrated()) j["cameraLensDistortion"] = lensParameters(lens);
+  j["cameraModel"] = lens.calibrated() ? std::string(lensModelToken(lens.kind))
+                                       : std::string(camera.orthographic ? "orthographic" : "pinhole");
   j["cameraNearFar"] = Json::array({decimal(camera.nearClip), decimal(camera.farClip)});
   j["cameraProjection"] = flat(p);
   j["cameraViewTransform"] = flat(view);

@@ -49,7 +49,8 @@ TEST_CASE("UsdLosses counts each kind once and keeps the first place", "[usd_los
 TEST_CASE("applied schemas that change the look are losses, others are not", "[usd_losses]") {
   CHECK(appliedSchemaChangesAppearance("ShapingAPI", true));
   CHECK(appliedSchemaChangesAppearance("ShadowAPI", true));
-  CHECK(appliedSchemaChangesAppearance("OmniLensDistortionOpenCvPinholeAPI", false));
+  CHECK_FALSE(appliedSchemaChangesAppearance("OmniLensDistortionOpenCvPinholeAPI", false));  // read (lens models)
+  CHECK(appliedSchemaChangesAppearance("OmniLensDistortionRadTanThinPrismAPI", false));
   CHECK(appliedSchemaChangesAppearance("MeshLightAPI", false));
   CHECK_FALSE(appliedSchemaChangesAppearance("LightAPI", true));  // a light's own
   CHECK(appliedSchemaChangesAppearance("LightAPI", false));       // a mesh light

@@ -47,18 +47,27 @@ Vec3f offsetOrigin(const Vec3f& p, const Vec3f& sideNormal) {
 // Primary rays through the rasterizer's projection (camera_math.h): a point
 // of the image is taken back to the near and far clipping planes, so
 // perspective, orthographic, aperture offsets and the clipping range all
-// follow the matrices the rasterizer draws with.
+// follow the matrices the rasterizer draws with. A calibrated lens
+// (lens_model.h) gives each image point its ray directly, from the eye,
+// clipped by distance (nearClip to farClip along the ray: a plane cannot
+// clip a view wider than 180 degrees); a point the lens images nothing at
+// gets an inactive ray (tMax < tMin), which finds nothing and carries no
+// light, so it stays black and unlabelled.
 class CameraRays {
  public:
   CameraRays(const RenderCamera& camera, int width, int height)
       : cameraFromClip_(projectionMatrix(camera, width, height).inverse()),
         rotation_(camera.worldFromCamera.block<3, 3>(0, 0)),
         eye_(camera.worldFromCamera.block<3, 1>(0, 3)),
+        lens_(camera.lens),
+        nearClip_(camera.nearClip),
+        farClip_(camera.farClip),
         width_(width),
         height_(height) {}
 
   // The ray through image point (px, py): x right, y down, in pixels.
   PtRay ray(double px, double py) const {
+    if (lens_.calibrated()) return lensRay(px, py);
     const double x = 2.0 * px / width_ - 1.0, y = 1.0 - 2.0 * py / height_;
     Eigen::Vector4d nearPoint = cameraFromClip_ * Eigen::Vector4d(x, y, -1.0, 1.0);
     Eigen::Vector4d farPoint = cameraFromClip_ * Eigen::Vector4d(x, y, 1.0, 1.0);
@@ -75,9 +84,23 @@ class CameraRays {
   Vec3f eye() const { return eye_.cast<float>(); }
 
  private:
+  PtRay lensRay(double px, double py) const {
+    PtRay r;
+    r.origin = eye_.cast<float>();
+    // The lens's pixels have their centres at integers, the image's at .5.
+    const std::optional<Vec3d> direction =
+        lensUnproject(lens_, Eigen::Vector2d(px - 0.5, py - 0.5), int(width_), int(height_));
+    r.direction = direction ? (rotation_ * *direction).cast<float>() : Vec3f(0, 0, -1);
+    r.tMin = direction ? nearClip_ : 1.0f;
+    r.tMax = direction ? farClip_ : -1.0f;
+    return r;
+  }
+
   Matrix4d cameraFromClip_;
   Eigen::Matrix3d rotation_;
   Vec3d eye_;
+  LensModel lens_;
+  float nearClip_, farClip_;
   double width_, height_;
 };
 
@@ -144,7 +167,9 @@ struct PtWavePath {
   void start(const PtRay& cameraRay) {
     ray = cameraRay;
     radiance.setZero();
-    beta.setOnes();
+    // An inactive camera ray (outside a lens's image) carries nothing.
+    if (cameraRay.tMax >= cameraRay.tMin) beta.setOnes();
+    else beta.setZero();
     bsdfPdf = 0.0f;
     previousPoint.setZero();
     previousNormal.setZero();

@@ -13,7 +13,9 @@
 // covers [x, x + 1) x [y, y + 1) of the image, y down; each sample's
 // primary ray goes through a point drawn uniformly in that square (a box
 // filter), from the near clipping plane to the far one, perspective or
-// orthographic. The labels-like planes (albedo, normal, depth, instance)
+// orthographic; a calibrated lens (render/lens_model.h) unprojects the
+// point instead, the ray leaving the eye (docs/rendering.md, "Lens
+// models"). The labels-like planes (albedo, normal, depth, instance)
 // come from one extra ray through the pixel's centre, the rasterizer's
 // unjittered ray, so they line up with its labels exactly; light shapes do
 // not appear in them.

@@ -492,6 +492,10 @@ void Renderer::drawScene(const RenderList& list, const RenderCamera& camera, con
 // Shadow maps, then the un-jittered frame: labels come from it, exact.
 void Renderer::drawFrame(const RenderList& list, size_t cameraIndex, const PassSelection& passes) {
   if (cameraIndex >= list.cameras.size()) throw RunError("renderer: no camera to render");
+  drawFrame(list, list.cameras[cameraIndex], passes);
+}
+
+void Renderer::drawFrame(const RenderList& list, const RenderCamera& camera, const PassSelection& passes) {
   ensureTargets();
   // Attachments nobody reads are not written: each costs llvmpipe a store
   // per pixel (16 bytes for normals).
@@ -508,11 +512,15 @@ void Renderer::drawFrame(const RenderList& list, size_t cameraIndex, const PassS
   for (size_t i = 0; i < list.lights.size() && int(shadowSlots_.size()) < std::min(settings_.maxShadowedLights, 4); ++i)
     if (list.lights[i].kind == LightKind::Distant || list.lights[i].kind == LightKind::Sphere)
       shadowSlots_.push_back({i, Matrix4d::Identity()});
-  if (!shadowSlots_.empty()) drawShadowMaps(list, list.cameras[cameraIndex]);
-  drawScene(list, list.cameras[cameraIndex], {0, 0});
+  if (!shadowSlots_.empty()) drawShadowMaps(list, camera);
+  drawScene(list, camera, {0, 0});
 }
 
 void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& out, const PassSelection& passes) {
+  if (cameraIndex < list.cameras.size() && list.cameras[cameraIndex].lens.calibrated()) {
+    renderLens(list, list.cameras[cameraIndex], out, passes);
+    return;
+  }
   out.resize(settings_.width, settings_.height, passes);
   drawFrame(list, cameraIndex, passes);
   const RenderCamera& camera = list.cameras[cameraIndex];
@@ -526,6 +534,22 @@ void Renderer::render(const RenderList& list, size_t cameraIndex, FramePasses& o
   }
   const uint32_t k = uint32_t(settings_.subframes);
   for (size_t i = 0; i < out.rgba.size(); ++i) out.rgba[i] = uint8_t((colorSum_[i] + k / 2) / k);
+}
+
+// Nearest resampling of pinhole views; subframes' jitter is not applied
+// (each view is drawn once, un-jittered).
+void Renderer::renderLens(const RenderList& list, const RenderCamera& camera, FramePasses& out,
+                          const PassSelection& passes) {
+  const int w = settings_.width, h = settings_.height;
+  LensViewPlan& plan = lensPlans_[camera.path];
+  if (!lensPlanFits(plan, camera, w, h)) plan = planLensViews(camera, w, h);
+  if (lensViews_.size() < plan.viewTemplates.size()) lensViews_.resize(plan.viewTemplates.size());
+  for (size_t i = 0; i < plan.viewTemplates.size(); ++i) {
+    lensViews_[i].resize(w, h, passes);
+    drawFrame(list, lensView(plan, camera, i), passes);
+    readBack(lensViews_[i], false, passes);
+  }
+  resampleLensViews(plan, lensViews_, passes, out);
 }
 
 Eigen::AlignedBox3f Renderer::meshBounds(const RenderItem& item) { return mesh(item).bounds; }

@@ -15,6 +15,7 @@
 #include "assets/mesh_data.h"
 #include "render/coverage_masks.h"
 #include "render/frame_passes.h"
+#include "render/lens_views.h"
 #include "render/render_settings.h"
 #include "render/raster/gl_context.h"
 #include "render/raster/instance_batches.h"
@@ -120,6 +121,12 @@ class Renderer {
   void readBack(FramePasses& out, bool colorOnly, const PassSelection& passes);
   void ensureTargets();
   void drawFrame(const RenderList& list, size_t cameraIndex, const PassSelection& passes);
+  void drawFrame(const RenderList& list, const RenderCamera& camera, const PassSelection& passes);
+  // A camera with a calibrated lens (render/lens_views.h): its pinhole
+  // views drawn and read back one after another, then resampled into `out`.
+  void renderLens(const RenderList& list, const RenderCamera& camera, FramePasses& out, const PassSelection& passes);
+  void drawMaskLayers(const RenderList& list, const RenderCamera& camera, const std::vector<std::vector<size_t>>& groups,
+                      unsigned buffer, uint32_t* cpu);
   // One attachment's pixels (bottom row first, as GL gives them) into `out`.
   void unpack(int attachment, const void* pixels, FramePasses& out);
   struct ReadSlot {
@@ -132,6 +139,9 @@ class Renderer {
     size_t maskBufferBytes = 0;
     size_t maskGroups = 0;
     bool masksPending = false;
+    // A lens camera's masks, resampled from its views when queued.
+    std::vector<uint32_t> lensMasks;
+    bool lensMasksReady = false;
   };
   ReadSlot readSlots_[2];
 
@@ -191,6 +201,10 @@ class Renderer {
   // Images embedded in the mesh files loaded so far, by texture key.
   std::unordered_map<std::string, EmbeddedImage> embeddedImages_;
   std::unordered_map<std::string, DomeTextures> domes_;
+  // Lens cameras' view plans by camera path, and their views' passes.
+  std::map<std::string, LensViewPlan> lensPlans_;
+  std::vector<FramePasses> lensViews_;
+  std::vector<uint32_t> lensMaskView_;  // one view's coverage masks
   std::vector<uint32_t> colorSum_;
   std::vector<uint8_t> scratchRgba_;
   std::vector<float> scratchFloat_;

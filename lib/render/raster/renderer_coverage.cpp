@@ -46,6 +46,39 @@ void Renderer::queueCoverage(const RenderList& list, size_t cameraIndex, const s
     gl_.glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(r.maskBufferBytes), nullptr, GL_STREAM_READ);
   }
   const RenderCamera& camera = list.cameras[cameraIndex];
+  if (!camera.lens.calibrated()) {
+    drawMaskLayers(list, camera, groups, r.maskBuffer, nullptr);
+    return;
+  }
+  // A calibrated lens: each of its views' masks read back here, then every
+  // pixel of the lens's image takes its view pixel's bits (render/lens_views.h).
+  LensViewPlan& plan = lensPlans_[camera.path];
+  if (!lensPlanFits(plan, camera, w, h)) plan = planLensViews(camera, w, h);
+  const size_t layerWords = size_t(w) * size_t(h);
+  r.lensMasks.assign(layers * layerWords, 0u);
+  lensMaskView_.resize(layers * layerWords);
+  for (size_t v = 0; v < plan.viewTemplates.size(); ++v) {
+    drawMaskLayers(list, lensView(plan, camera, v), groups, 0, lensMaskView_.data());
+    for (size_t i = 0; i < layerWords; ++i) {
+      if (plan.view[i] != int32_t(v)) continue;
+      // Mask rows are bottom first, the plan's top first.
+      const size_t x = i % size_t(w), y = i / size_t(w);
+      const size_t sx = plan.sourcePixel[i] % size_t(w), sy = plan.sourcePixel[i] / size_t(w);
+      const size_t to = (size_t(h) - 1 - y) * size_t(w) + x, from = (size_t(h) - 1 - sy) * size_t(w) + sx;
+      for (size_t layer = 0; layer < layers; ++layer)
+        r.lensMasks[layer * layerWords + to] = lensMaskView_[layer * layerWords + from];
+    }
+  }
+  r.lensMasksReady = true;
+}
+
+// Every layer of 32 groups drawn from `camera` and read back into the pixel
+// buffer `buffer` (layer after layer), or, with `cpu`, into that memory.
+void Renderer::drawMaskLayers(const RenderList& list, const RenderCamera& camera,
+                              const std::vector<std::vector<size_t>>& groups, unsigned buffer, uint32_t* cpu) {
+  const int w = settings_.width, h = settings_.height;
+  const size_t layers = (groups.size() + 31) / 32;
+  const size_t layerBytes = size_t(w) * size_t(h) * sizeof(uint32_t);
   const Matrix4d viewProjection = projectionMatrix(camera, w, h) * viewMatrix(camera);
   gl_.glBindFramebuffer(GL_FRAMEBUFFER, maskFramebuffer_);
   gl_.glViewport(0, 0, w, h);
@@ -66,8 +99,10 @@ void Renderer::queueCoverage(const RenderList& list, size_t cameraIndex, const s
     maskBatches_.buildMasks(list, meshSlots_, groups, first, last);
     uploadInstances(maskBatches_, maskInstanceBuffer_);
     drawWholeMeshes(maskBatches_, maskInstanceBuffer_);
-    gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, r.maskBuffer);
-    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, reinterpret_cast<void*>(layer * layerBytes));
+    gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, cpu ? 0 : buffer);
+    void* at = cpu ? static_cast<void*>(reinterpret_cast<uint8_t*>(cpu) + layer * layerBytes)
+                   : reinterpret_cast<void*>(layer * layerBytes);
+    gl_.glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, at);
   }
   gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   gl_.glDisable(GL_COLOR_LOGIC_OP);
@@ -85,6 +120,11 @@ void Renderer::collectCoverage(int slot, CoverageMasks& out) {
   const size_t words = (r.maskGroups + 31) / 32 * size_t(out.width) * size_t(out.height);
   out.bits.resize(words);
   if (!words) return;
+  if (r.lensMasksReady) {  // already resampled on the CPU
+    r.lensMasksReady = false;
+    std::copy_n(r.lensMasks.data(), words, out.bits.data());
+    return;
+  }
   gl_.glBindBuffer(GL_PIXEL_PACK_BUFFER, r.maskBuffer);
   const void* pixels = gl_.glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(words * sizeof(uint32_t)), GL_MAP_READ_BIT);
   if (!pixels) throw RunError("renderer: cannot map the coverage read-back buffer");

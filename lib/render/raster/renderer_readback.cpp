@@ -101,7 +101,8 @@ void Renderer::ensureTargets() {
 
 void Renderer::queue(const RenderList& list, size_t cameraIndex, const PassSelection& passes, int slot) {
   ReadSlot& r = readSlots_[slot & 1];
-  if (settings_.subframes > 1) {
+  const bool lens = cameraIndex < list.cameras.size() && list.cameras[cameraIndex].lens.calibrated();
+  if (settings_.subframes > 1 || lens) {
     render(list, cameraIndex, r.frame, passes);
     r.synchronous = true;
     r.pending = true;
