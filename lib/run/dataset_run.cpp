@@ -1,5 +1,6 @@
 #include "run/dataset_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <future>
@@ -254,9 +255,14 @@ void DatasetRun::prepare() {
   cameraPaths_ = productCameras(scene_, initialList, sceneLoc_);
   productNames_ = productNamesOf(cameraPaths_, sceneLoc_);
   settings_ = renderSettingsFor(scene_, options_.render);
+  // Only BOP's models read what behaviors spawn; other runs skip the asset checks it takes.
+  const bool bop = std::any_of(scene_.writers.begin(), scene_.writers.end(),
+                               [](const WriterConfig& w) { return w.type == "BopWriter"; });
   writers_ = makeWriters(scene_.writers,
                          WriterSetup{productNames_, options_.seed, settings_.width, settings_.height, &scene_.stage,
-                                     &loaded_.assets, meshesSpawnedByBuiltins(scene_.stage, loaded_.assets)},
+                                     &loaded_.assets,
+                                     bop ? meshesSpawnedByBuiltins(scene_.stage, loaded_.assets)
+                                         : std::vector<LabelledMesh>{}},
                          sceneLoc_);
   keepRadiance_ = writers_.needs.radiance;
   lidarPaths_ = capturedLidars(scene_, writers_.needs.lidar, sceneLoc_);
